@@ -1,0 +1,38 @@
+#pragma once
+// Milling cutters with a vertical axis (+Z). All three are described by two radii:
+// R (half the diameter) and the corner radius r; the cutter's lower surface is the flat
+// disc of radius a = R - r at the tip plus a quarter torus of tube radius r.
+//   ball:      r = R (a = 0)
+//   flat:      r = 0 (a = R)
+//   bull-nose: 0 < r <= R
+#include <cstdint>
+#include <string>
+
+namespace ncpath {
+
+enum class CutterType : std::uint8_t { kBall = 0, kFlat = 1, kBullNose = 2 };
+
+struct Cutter {
+  CutterType type = CutterType::kBall;
+  double radius = 0;         // R, mm
+  double corner_radius = 0;  // r, mm (ball: R, flat: 0)
+
+  double flat_radius() const { return radius - corner_radius; }  // a = R - r, mm
+};
+
+// Builders from the machinist's numbers (diameters). They do not validate; see validate().
+Cutter ball_cutter(double diameter_mm);
+Cutter flat_cutter(double diameter_mm);
+Cutter bull_nose_cutter(double diameter_mm, double corner_radius_mm);
+
+// Empty when the cutter is usable; otherwise a sentence naming the bad value, e.g.
+// "corner radius 3 mm exceeds the cutter radius 2.5 mm".
+std::string validate(const Cutter& cutter);
+
+// Height of the cutter's lower surface above its tip at horizontal distance rho from the
+// axis, for 0 <= rho <= R (mm). Convex and non-decreasing in rho.
+double profile_height(const Cutter& cutter, double rho);
+
+const char* cutter_type_name(CutterType type);  // "ball", "flat", "bullnose"
+
+}  // namespace ncpath

@@ -1,0 +1,232 @@
+#include "kernels/cutters/drop_cutter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "kernels/geom/tolerance.hpp"
+
+namespace ncpath {
+
+const char* contact_kind_name(ContactKind kind) {
+  switch (kind) {
+    case ContactKind::kNone: return "none";
+    case ContactKind::kVertex: return "vertex";
+    case ContactKind::kEdge: return "edge";
+    case ContactKind::kFacet: return "facet";
+  }
+  return "?";
+}
+
+bool prepare_facet(const Vec3& a, const Vec3& b, const Vec3& c, PreparedFacet& f) {
+  Vec3 n = (b - a).cross(c - a);
+  const double len = n.norm();
+  if (!(len >= tol::kDegenerateArea2)) return false;
+  n /= len;
+  if (n.z() < 0) n = -n;
+  f.p[0] = a;
+  f.p[1] = b;
+  f.p[2] = c;
+  f.n = n;
+  f.plane_d = n.dot(a);
+  f.vertical = std::abs(n.z()) < tol::kVerticalNormalZ;
+  f.min_x = std::min({a.x(), b.x(), c.x()});
+  f.max_x = std::max({a.x(), b.x(), c.x()});
+  f.min_y = std::min({a.y(), b.y(), c.y()});
+  f.max_y = std::max({a.y(), b.y(), c.y()});
+  f.min_z = std::min({a.z(), b.z(), c.z()});
+  f.max_z = std::max({a.z(), b.z(), c.z()});
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = f.p[k];
+    const Vec3& q = f.p[(k + 1) % 3];
+    const double dx = q.x() - p.x(), dy = q.y() - p.y();
+    const double l = std::hypot(dx, dy);
+    f.len_xy[k] = l;
+    if (l > 0) {
+      f.ex[k] = dx / l;
+      f.ey[k] = dy / l;
+      f.slope[k] = (q.z() - p.z()) / l;
+    } else {
+      f.ex[k] = f.ey[k] = f.slope[k] = 0;
+    }
+  }
+  return true;
+}
+
+namespace {
+
+inline double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+// Point-in-triangle in the xy projection, boundary included.
+inline bool inside_xy(const PreparedFacet& f, double x, double y) {
+  const double d0 = cross2(f.p[1].x() - f.p[0].x(), f.p[1].y() - f.p[0].y(), x - f.p[0].x(),
+                           y - f.p[0].y());
+  const double d1 = cross2(f.p[2].x() - f.p[1].x(), f.p[2].y() - f.p[1].y(), x - f.p[1].x(),
+                           y - f.p[1].y());
+  const double d2 = cross2(f.p[0].x() - f.p[2].x(), f.p[0].y() - f.p[2].y(), x - f.p[2].x(),
+                           y - f.p[2].y());
+  return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
+}
+
+// Tangent contact with the facet's plane. Always computes the tip height at which the
+// cutter touches the infinite plane (an upper bound for every contact with the facet);
+// returns whether the tangent point lies inside the triangle.
+inline bool plane_contact(const Cutter& c, const PreparedFacet& f, double x, double y,
+                          double& tip, double& ccx, double& ccy) {
+  const double r = c.corner_radius, a = c.radius - c.corner_radius;
+  const double nx = f.n.x(), ny = f.n.y(), nz = f.n.z();
+  const double nxy = std::sqrt(nx * nx + ny * ny);
+  ccx = x;
+  ccy = y;
+  if (nxy > 0) {
+    const double k = a / nxy + r;
+    ccx -= k * nx;
+    ccy -= k * ny;
+  }
+  const double ccz = (f.plane_d - nx * ccx - ny * ccy) / nz;
+  tip = ccz + r * nz - r;
+  return inside_xy(f, ccx, ccy);
+}
+
+// Solves tan(psi) * sqrt(1 - d^2 / rho^2) = m for psi, rho = a + r sin(psi), m >= 0:
+// the torus angle at which a bull-nose touches a line of slope m at horizontal distance d.
+double bull_edge_angle(double a, double r, double d, double m) {
+  double lo = d <= a ? 0.0 : std::asin(std::min(1.0, (d - a) / r));
+  if (m <= 0) return lo;
+  double hi = std::numbers::pi / 2;
+  lo = std::max(lo, std::atan(m));  // G(psi) <= tan(psi), so the root is above atan(m)
+  double psi = lo;
+  for (int it = 0; it < 100; ++it) {
+    const double s = std::sin(psi), co = std::cos(psi);
+    const double rho = a + r * s;
+    const double q = 1.0 - (d * d) / (rho * rho);
+    const double sq = std::sqrt(std::max(0.0, q));
+    const double t = s / co;
+    const double g = t * sq - m;
+    if (g > 0)
+      hi = psi;
+    else
+      lo = psi;
+    double gp = sq / (co * co);
+    if (sq > 0) gp += t * d * d * r * co / (rho * rho * rho * sq);
+    double next = psi - g / gp;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - psi) <= 1e-15 * (1 + psi) || hi - lo <= 1e-15) return next;
+    psi = next;
+  }
+  return psi;
+}
+
+// Edge contact in the edge's horizontal frame: p is the start vertex, (ex, ey) the unit
+// horizontal direction, len its horizontal length, m the slope dz/du. Only contacts at
+// interior points of the edge count (the vertices are tested on their own).
+inline bool edge_contact(const Cutter& c, const Vec3& p, double ex, double ey, double len,
+                         double m, double x, double y, double& tip, Vec3& cc) {
+  if (!(len > 0)) return false;
+  const double R = c.radius;
+  const double dx = x - p.x(), dy = y - p.y();
+  const double u0 = dx * ex + dy * ey;
+  const double d = std::abs(dx * ey - dy * ex);
+  if (d > R) return false;
+  const double s = std::sqrt(R * R - d * d);
+  if (u0 + s <= 0 || u0 - s >= len) return false;
+  double u;
+  switch (c.type) {
+    case CutterType::kBall: {
+      const double k = std::sqrt(1 + m * m);
+      u = u0 + s * m / k;
+      if (!(u > 0 && u < len)) return false;
+      tip = p.z() + m * u0 + s * k - R;
+      break;
+    }
+    case CutterType::kFlat: {
+      u = m > 0 ? u0 + s : (m < 0 ? u0 - s : u0);
+      if (!(u > 0 && u < len)) return false;
+      tip = p.z() + m * u;
+      break;
+    }
+    default: {
+      const double r = c.corner_radius, a = R - r;
+      const double psi = bull_edge_angle(a, r, d, std::abs(m));
+      const double rho = a + r * std::sin(psi);
+      const double du = std::sqrt(std::max(0.0, rho * rho - d * d));
+      u = m >= 0 ? u0 + du : u0 - du;
+      if (!(u > 0 && u < len)) return false;
+      tip = p.z() + m * u - r * (1 - std::cos(psi));
+      break;
+    }
+  }
+  cc = Vec3(p.x() + u * ex, p.y() + u * ey, p.z() + u * m);
+  return true;
+}
+
+inline bool vertex_contact(const Cutter& c, const Vec3& v, double x, double y, double& tip) {
+  const double dx = v.x() - x, dy = v.y() - y;
+  const double rho2 = dx * dx + dy * dy;
+  if (rho2 > c.radius * c.radius) return false;
+  tip = v.z() - profile_height(c, std::sqrt(rho2));
+  return true;
+}
+
+}  // namespace
+
+bool drop_on_plane(const Cutter& c, const PreparedFacet& f, double x, double y, double& tip_z,
+                   Vec3& cc) {
+  if (f.vertical) return false;
+  double ccx, ccy;
+  if (!plane_contact(c, f, x, y, tip_z, ccx, ccy)) return false;
+  cc = Vec3(ccx, ccy, (f.plane_d - f.n.x() * ccx - f.n.y() * ccy) / f.n.z());
+  return true;
+}
+
+bool drop_on_edge(const Cutter& c, const Vec3& p, const Vec3& q, double x, double y,
+                  double& tip_z, Vec3& cc) {
+  const double dx = q.x() - p.x(), dy = q.y() - p.y();
+  const double l = std::hypot(dx, dy);
+  if (!(l > 0)) return false;
+  return edge_contact(c, p, dx / l, dy / l, l, (q.z() - p.z()) / l, x, y, tip_z, cc);
+}
+
+bool drop_on_vertex(const Cutter& c, const Vec3& v, double x, double y, double& tip_z) {
+  return vertex_contact(c, v, x, y, tip_z);
+}
+
+bool drop_facet(const Cutter& c, const PreparedFacet& f, double x, double y,
+                std::uint32_t facet_index, CutterContact& best) {
+  const double R = c.radius;
+  if (x < f.min_x - R || x > f.max_x + R || y < f.min_y - R || y > f.max_y + R) return false;
+  if (f.max_z <= best.tip_z) return false;  // every contact's tip is at or below max_z
+  if (!f.vertical) {
+    double tip, ccx, ccy;
+    const bool inside = plane_contact(c, f, x, y, tip, ccx, ccy);
+    // The plane contact bounds every contact with the facet from above.
+    if (tip <= best.tip_z) return false;
+    if (inside) {
+      best.tip_z = tip;
+      best.cc = Vec3(ccx, ccy, (f.plane_d - f.n.x() * ccx - f.n.y() * ccy) / f.n.z());
+      best.kind = ContactKind::kFacet;
+      best.facet = facet_index;
+      return true;
+    }
+  }
+  bool raised = false;
+  for (int k = 0; k < 3; ++k) {
+    double tip;
+    Vec3 cc;
+    if (edge_contact(c, f.p[k], f.ex[k], f.ey[k], f.len_xy[k], f.slope[k], x, y, tip, cc) &&
+        tip > best.tip_z) {
+      best = {tip, cc, ContactKind::kEdge, facet_index};
+      raised = true;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    double tip;
+    if (vertex_contact(c, f.p[k], x, y, tip) && tip > best.tip_z) {
+      best = {tip, f.p[k], ContactKind::kVertex, facet_index};
+      raised = true;
+    }
+  }
+  return raised;
+}
+
+}  // namespace ncpath
