@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Geometry>
+
 #include "kernels/geom/tolerance.hpp"
 
 namespace ncpath {

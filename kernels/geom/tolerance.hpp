@@ -28,4 +28,15 @@ inline constexpr double kFloatBoxPad = 1e-5;
 // between two CL points deviates from the sampled CL curve by at most this.
 inline constexpr double kDefaultChordal = 0.01;
 
+// Dimensionless, relative to the polygon's size (longest side of its bounding box). A polygon
+// edge shorter than this fraction of the size has zero length: the polygon is rejected as
+// not strictly convex (the OFF reader's polygon check).
+inline constexpr double kPolygonZeroEdge = 1e-12;
+
+// Dimensionless. A polygon vertex whose turn has |sin(angle)| below this, and that keeps
+// going forward, is straight (collinear with its neighbours): it is not a corner, so it is
+// neither a turn of the wrong sign nor the apex of a zero-area fan triangle. Likewise a
+// polygon whose doubled Newell area is below this times size^2 has no plane (degenerate).
+inline constexpr double kPolygonStraightTurn = 1e-12;
+
 }  // namespace ncpath::tol

@@ -1,0 +1,65 @@
+#pragma once
+// The one wrapper around oneTBB (STYLE.md habit 2). Everything in ncpath that runs in
+// parallel goes through these functions; kernels never see them. With threads == 1 the
+// same code runs sequentially, in index order, on the calling thread.
+#include <cstddef>
+#include <memory>
+#include <numeric>
+#include <span>
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace ncpath::par {
+
+// Caps the number of worker threads for the lifetime of the object (0 = all cores).
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads) {
+    if (threads > 0)
+      control_ = std::make_unique<tbb::global_control>(
+          tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+  }
+
+ private:
+  std::unique_ptr<tbb::global_control> control_;
+};
+
+// Threads the next parallel call may use.
+inline int max_threads() {
+  return static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
+
+// Calls body(begin, end) over disjoint sub-ranges covering [0, n). `grain` is the smallest
+// sub-range worth a task. Bodies must write only to slots they own (count, scan, fill).
+template <class Body>
+void for_ranges(std::size_t n, std::size_t grain, Body&& body) {
+  if (n == 0) return;
+  if (max_threads() <= 1 || n <= grain) {
+    body(std::size_t{0}, n);
+    return;
+  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain == 0 ? 1 : grain),
+                    [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+}
+
+// Calls body(i) for every i in [0, n).
+template <class Body>
+void for_each(std::size_t n, std::size_t grain, Body&& body) {
+  for_ranges(n, grain, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) body(i);
+  });
+}
+
+// Exclusive prefix sum of counts into offsets (offsets.size() == counts.size() + 1). Cheap
+// and sequential: it is the "scan" between a parallel count and a parallel fill.
+template <class T, class U>
+void exclusive_scan(std::span<const T> counts, std::span<U> offsets) {
+  offsets[0] = 0;
+  for (std::size_t i = 0; i < counts.size(); ++i) offsets[i + 1] = offsets[i] + counts[i];
+}
+
+}  // namespace ncpath::par
