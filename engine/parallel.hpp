@@ -2,6 +2,7 @@
 // The one wrapper around oneTBB (STYLE.md habit 2). Everything in ncpath that runs in
 // parallel goes through these functions; kernels never see them. With threads == 1 the
 // same code runs sequentially, in index order, on the calling thread.
+#include <algorithm>
 #include <cstddef>
 #include <memory>
 #include <numeric>
@@ -10,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 #include <tbb/task_arena.h>
 
 namespace ncpath::par {
@@ -52,6 +54,16 @@ void for_each(std::size_t n, std::size_t grain, Body&& body) {
   for_ranges(n, grain, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) body(i);
   });
+}
+
+// Sorts [first, last) by `less`, which must be a strict total order (break ties!) so that
+// the result does not depend on the thread count.
+template <class It, class Less>
+void sort(It first, It last, Less less) {
+  if (max_threads() <= 1)
+    std::sort(first, last, less);
+  else
+    tbb::parallel_sort(first, last, less);
 }
 
 // Exclusive prefix sum of counts into offsets (offsets.size() == counts.size() + 1). Cheap

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "engine/parallel.hpp"
 
 namespace ncpath {
 
@@ -30,6 +34,14 @@ StripBuckets bucket_facets_by_strip(const FacetTable& table, double radius, doub
   b.height = height;
   b.offsets.assign(strips + 1, 0);
   const std::size_t n = table.facets.size();
+  // Facets highest-top first (ties by id): filling strips, and then bins, in this order
+  // leaves every list sorted for the walk in StripBins::drop without any further sort.
+  std::vector<std::uint32_t> order(n);
+  std::iota(order.begin(), order.end(), 0u);
+  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const double za = table.facets[a].max_z, zb = table.facets[b].max_z;
+    return za > zb || (za == zb && a < b);
+  });
   std::vector<std::uint32_t> lo(n), hi(n);
   std::vector<std::uint8_t> hit(n);
   // Count.
@@ -41,13 +53,12 @@ StripBuckets bucket_facets_by_strip(const FacetTable& table, double radius, doub
   }
   // Scan.
   for (std::size_t s = 0; s < strips; ++s) b.offsets[s + 1] += b.offsets[s];
-  // Fill, in facet order, so each strip's list is sorted by facet id.
+  // Fill, highest top first.
   b.ids.resize(b.offsets[strips]);
   std::vector<std::uint32_t> cursor(b.offsets.begin(), b.offsets.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
+  for (const std::uint32_t i : order)
     if (hit[i])
-      for (std::uint32_t s = lo[i]; s <= hi[i]; ++s)
-        b.ids[cursor[s]++] = static_cast<std::uint32_t>(i);
+      for (std::uint32_t s = lo[i]; s <= hi[i]; ++s) b.ids[cursor[s]++] = i;
   return b;
 }
 
@@ -78,14 +89,26 @@ void StripBins::rebuild(const FacetTable& table, const Cutter& cutter, const std
   for (std::size_t k = 0; k < count; ++k) {
     const std::uint32_t l = lo_[k], h = hi_[k];
     if (l > h) continue;
-    const Entry e{table.facets[ids[k]].max_z, ids[k]};
+    const Entry e = make_entry(table.facets[ids[k]], cutter, ids[k]);
     for (std::uint32_t c = l; c <= h; ++c) entries_[cursor_[c]++] = e;
   }
-  for (std::size_t c = 0; c < bins; ++c)
-    std::sort(entries_.begin() + offsets_[c], entries_.begin() + offsets_[c + 1],
-              [](const Entry& a, const Entry& b) {
-                return a.top_z > b.top_z || (a.top_z == b.top_z && a.facet < b.facet);
-              });
+}
+
+StripBins::Entry StripBins::make_entry(const PreparedFacet& f, const Cutter& c,
+                                       std::uint32_t id) {
+  const double R = c.radius, r = c.corner_radius, a = R - r;
+  Entry e{f.max_z, f.min_x - R, f.max_x + R, f.min_y - R, f.max_y + R, 0, 0, 0, id};
+  if (f.vertical) {
+    e.plane_c = std::numeric_limits<double>::infinity();  // no plane bound
+  } else {
+    // Same tangent point as the kernel: (x, y) - (a / |n_xy| + r) n_xy.
+    const double nx = f.n.x(), ny = f.n.y(), nz = f.n.z();
+    const double nxy = std::sqrt(nx * nx + ny * ny);
+    e.plane_a = -nx / nz;
+    e.plane_b = -ny / nz;
+    e.plane_c = (f.plane_d + a * nxy + r * nxy * nxy) / nz + r * nz - r;
+  }
+  return e;
 }
 
 CutterContact StripBins::drop(double x, double y, CutterContact best) const {
@@ -95,8 +118,14 @@ CutterContact StripBins::drop(double x, double y, CutterContact best) const {
       static_cast<std::size_t>(std::clamp(fc, 0.0, static_cast<double>(bins - 1)));
   const Entry* e = entries_.data() + offsets_[c];
   const Entry* end = entries_.data() + offsets_[c + 1];
-  for (; e != end && e->top_z > best.tip_z; ++e)
+  // Rounding slack of the linear plane bound (it is evaluated differently from the
+  // kernel's): far below the 1e-9 mm exactness contract.
+  constexpr double kBoundSlack = 1e-10;
+  for (; e != end && e->top_z > best.tip_z; ++e) {
+    if (x < e->x_lo || x > e->x_hi || y < e->y_lo || y > e->y_hi) continue;
+    if (e->plane_a * x + e->plane_b * y + e->plane_c + kBoundSlack <= best.tip_z) continue;
     drop_facet(cutter_, table_->facets[e->facet], x, y, e->facet, best);
+  }
   return best;
 }
 

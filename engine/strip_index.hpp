@@ -32,6 +32,7 @@ StripBuckets bucket_facets_by_strip(const FacetTable& table, double radius, doub
 // reused from strip to strip (rebuild() keeps the allocations).
 class StripBins {
  public:
+  // ids must be sorted highest top first (as bucket_facets_by_strip leaves them).
   void rebuild(const FacetTable& table, const Cutter& cutter, const std::uint32_t* ids,
                std::size_t count, double x0, double x1, double bin_width);
 
@@ -40,10 +41,16 @@ class StripBins {
   CutterContact drop(double x, double y, CutterContact seed) const;
 
  private:
+  // Everything the walk needs to dismiss a facet without touching its PreparedFacet: its
+  // top, its box grown by the radius, and the tangent-plane tip, which is linear in (x, y)
+  // (plane_a x + plane_b y + plane_c) and bounds every contact with the facet from above.
   struct Entry {
     double top_z;
+    double x_lo, x_hi, y_lo, y_hi;
+    double plane_a, plane_b, plane_c;
     std::uint32_t facet;
   };
+  static Entry make_entry(const PreparedFacet& f, const Cutter& c, std::uint32_t id);
   const FacetTable* table_ = nullptr;
   Cutter cutter_;
   double x0_ = 0, inv_width_ = 1;

@@ -211,11 +211,15 @@ bool drop_facet(const Cutter& c, const PreparedFacet& f, double x, double y,
       return true;
     }
   }
+  // Edge and vertex contacts are never above the highest point they touch, which settles
+  // most of them without the square roots.
   bool raised = false;
   for (int k = 0; k < 3; ++k) {
+    const Vec3& p = f.p[k];
+    if (std::max(p.z(), f.p[(k + 1) % 3].z()) <= best.tip_z) continue;
     double tip;
     Vec3 cc;
-    if (edge_contact(c, f.p[k], f.ex[k], f.ey[k], f.len_xy[k], f.slope[k], x, y, tip, cc) &&
+    if (edge_contact(c, p, f.ex[k], f.ey[k], f.len_xy[k], f.slope[k], x, y, tip, cc) &&
         tip > best.tip_z) {
       best = {tip, cc, ContactKind::kEdge, facet_index};
       raised = true;
@@ -223,7 +227,7 @@ bool drop_facet(const Cutter& c, const PreparedFacet& f, double x, double y,
   }
   for (int k = 0; k < 3; ++k) {
     double tip;
-    if (vertex_contact(c, f.p[k], x, y, tip) && tip > best.tip_z) {
+    if (f.p[k].z() > best.tip_z && vertex_contact(c, f.p[k], x, y, tip) && tip > best.tip_z) {
       best = {tip, f.p[k], ContactKind::kVertex, facet_index};
       raised = true;
     }
