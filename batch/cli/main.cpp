@@ -1,0 +1,189 @@
+// ncpath command line: raster, drop and run (a TOML batch). Every command builds the same
+// JobSpec a batch file would, so a job behaves the same whichever way it was given.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <iostream>
+#include <optional>
+
+#include "batch/cli/progress_bar.hpp"
+#include "batch/jobs/job_runner.hpp"
+
+using namespace ncpath;
+
+namespace {
+
+struct Common {
+  std::string mesh, tool = "ball:5", out = "ncpath-out.h5", name;
+  int threads = 0;
+  bool quiet = false;
+  std::optional<double> fit_xy;
+  double scale = 1;
+  std::vector<double> translate;
+};
+
+void add_common(CLI::App* app, Common& c) {
+  app->add_option("--mesh", c.mesh, "Part mesh: STL (binary or ASCII) or OFF")->required();
+  app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")->capture_default_str();
+  app->add_option("--out", c.out, "HDF5 file to write (see docs/hdf5-schema.md)")->capture_default_str();
+  app->add_option("--name", c.name, "Job name inside the HDF5 file (default: the operation)");
+  app->add_option("--threads", c.threads, "Worker threads, 0 = all cores")->capture_default_str();
+  app->add_option("--fit-xy", c.fit_xy,
+                  "Scale the mesh uniformly about the origin so its longest xy side is this many mm");
+  app->add_option("--scale", c.scale, "Uniform scale factor (applied with --fit-xy)")->capture_default_str();
+  app->add_option("--translate", c.translate, "Translation x y z in mm, after scaling")->expected(3);
+  app->add_flag("-q,--quiet", c.quiet, "No progress bar");
+}
+
+jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
+  jobs::JobSpec j;
+  j.operation = op;
+  j.name = c.name.empty() ? jobs::operation_name(op) : c.name;
+  j.input = c.mesh;
+  j.tool_text = c.tool;
+  if (std::string e = jobs::parse_tool(c.tool, j.tool); !e.empty()) {
+    j.error = "--tool: " + e;
+    j.error_status = "invalid_parameter";
+  }
+  j.transform.scale = c.scale;
+  j.transform.fit_xy_mm = c.fit_xy;
+  if (c.translate.size() == 3) j.transform.translate = Vec3(c.translate[0], c.translate[1], c.translate[2]);
+  if (std::string e = validate(j.transform); !e.empty() && j.error.empty()) {
+    j.error = "--" + e;
+    j.error_status = "invalid_parameter";
+  }
+  return j;
+}
+
+std::string human(double v) {
+  char buf[32];
+  if (v >= 1e6)
+    std::snprintf(buf, sizeof buf, "%.2f M", v / 1e6);
+  else if (v >= 1e3)
+    std::snprintf(buf, sizeof buf, "%.1f k", v / 1e3);
+  else
+    std::snprintf(buf, sizeof buf, "%.0f ", v);
+  return buf;
+}
+
+int run(const jobs::BatchSpec& batch, bool quiet) {
+  cli::ProgressBar bar(!quiet && cli::stderr_is_terminal());
+  jobs::BatchObserver obs;
+  obs.job_started = [&](std::size_t i, std::size_t n, const jobs::JobSpec& j) {
+    bar.start("[" + std::to_string(i + 1) + "/" + std::to_string(n) + "] " + j.name);
+  };
+  obs.progress = [&](std::uint64_t done, std::uint64_t total) { bar.update(done, total); };
+  obs.job_finished = [&](const jobs::JobOutcome&) { bar.finish(); };
+  std::vector<jobs::JobOutcome> outcomes;
+  try {
+    outcomes = jobs::run_batch(batch, obs);
+  } catch (const std::exception& e) {
+    bar.finish();
+    std::fprintf(stderr, "ncpath: %s\n", e.what());
+    return 2;
+  }
+  int failed = 0;
+  for (const auto& o : outcomes) {
+    if (o.status == "ok") {
+      std::printf("  %-24s ok      %spoints in %.2f s (%spoints/s drop-cutting), peak RSS %.0f MB\n",
+                  o.name.c_str(), human(static_cast<double>(o.points)).c_str(), o.seconds,
+                  human(o.compute_s > 0 ? o.points / o.compute_s : 0).c_str(),
+                  o.peak_rss_bytes / 1048576.0);
+    } else {
+      ++failed;
+      std::printf("  %-24s %s: %s\n", o.name.c_str(), o.status.c_str(), o.message.c_str());
+    }
+  }
+  std::printf("ncpath: %zu job(s), %zu ok, %d failed -> %s\n", outcomes.size(),
+              outcomes.size() - failed, failed, batch.output.string().c_str());
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"ncpath: exact cutter-location (CL) data for NC milling, in bulk.\n"
+               "Units are mm; CL points are tool-tip positions, tool axis +Z."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", NCPATH_VERSION);
+
+  Common rc;
+  RasterParams rp;
+  std::string direction = "x";
+  std::vector<double> rect;
+  std::optional<double> floor_z;
+  CLI::App* raster = app.add_subcommand("raster", "Zig-zag drop-cutter finishing over a mesh");
+  add_common(raster, rc);
+  raster->add_option("--interval", rp.interval, "Distance between scan lines (mm)")->capture_default_str();
+  raster->add_option("--step", rp.step, "Sampling step along a scan line (mm)")->capture_default_str();
+  raster->add_option("--direction", direction, "Scan lines run along x or y")
+      ->check(CLI::IsMember({"x", "y"}))->capture_default_str();
+  raster->add_option("--margin", rp.margin, "Grow the part's xy box by this on every side (mm)")
+      ->capture_default_str();
+  raster->add_option("--rect", rect, "Scan this rectangle instead: x_min y_min x_max y_max (mm)")
+      ->expected(4);
+  raster->add_option("--adaptive", rp.adaptive_tolerance,
+                     "Chordal tolerance of adaptive sampling (mm), 0 = off")->capture_default_str();
+  raster->add_option("--min-step", rp.min_step, "Smallest adaptive spacing (mm), 0 = step/64")
+      ->capture_default_str();
+  raster->add_option("--floor-z", floor_z, "Height where the tool touches nothing (mm); default: the part's lowest z");
+
+  Common dc;
+  std::string points;
+  CLI::App* drop = app.add_subcommand("drop", "Drop the tool at given xy points (CSV x,y lines)");
+  add_common(drop, dc);
+  drop->add_option("--points", points, "CSV of x,y lines (mm); a blank line starts a new path")
+      ->required();
+
+  std::string batch_file, batch_out;
+  int batch_threads = -1;
+  bool batch_quiet = false;
+  CLI::App* runc = app.add_subcommand("run", "Run the jobs of a TOML batch file (docs/cli.md)");
+  runc->add_option("jobs", batch_file, "Batch file (TOML)")->required();
+  runc->add_option("--out", batch_out, "Override the batch file's output path");
+  runc->add_option("--threads", batch_threads, "Override the batch file's thread count");
+  runc->add_flag("-q,--quiet", batch_quiet, "No progress bar");
+
+  CLI11_PARSE(app, argc, argv);
+
+  jobs::BatchSpec batch;
+  bool quiet = false;
+  if (raster->parsed()) {
+    jobs::JobSpec j = job_from(rc, jobs::Operation::kRaster);
+    rp.direction = direction == "y" ? ScanDirection::kY : ScanDirection::kX;
+    if (rect.size() == 4) rp.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
+    rp.floor_z = floor_z;
+    j.raster = rp;
+    if (std::string e = validate(rp); !e.empty() && j.error.empty()) {
+      j.error = "--" + e;
+      j.error_status = "invalid_parameter";
+    }
+    batch.output = rc.out;
+    batch.threads = rc.threads;
+    quiet = rc.quiet;
+    batch.jobs.push_back(std::move(j));
+  } else if (drop->parsed()) {
+    jobs::JobSpec j = job_from(dc, jobs::Operation::kDrop);
+    j.points = points;
+    batch.output = dc.out;
+    batch.threads = dc.threads;
+    quiet = dc.quiet;
+    batch.jobs.push_back(std::move(j));
+  } else {
+    try {
+      batch = jobs::parse_batch_file(batch_file);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "ncpath: %s\n", e.what());
+      return 2;
+    }
+    if (!batch_out.empty()) batch.output = batch_out;
+    if (batch_threads >= 0) batch.threads = batch_threads;
+    if (batch.output.empty()) {
+      std::fprintf(stderr, "ncpath: %s: no output file: set 'output' or pass --out\n",
+                   batch_file.c_str());
+      return 2;
+    }
+    quiet = batch_quiet;
+  }
+  return run(batch, quiet);
+}

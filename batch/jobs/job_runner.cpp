@@ -1,0 +1,143 @@
+#include "batch/jobs/job_runner.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "batch/io/mesh_reader.hpp"
+#include "batch/jobs/points_csv.hpp"
+#include "batch/output/cl_writer.hpp"
+#include "engine/drop_points.hpp"
+#include "engine/parallel.hpp"
+#include "engine/raster.hpp"
+#include "engine/run_control.hpp"
+
+namespace ncpath::jobs {
+
+namespace {
+
+using out::StatValue;
+
+std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+
+// Runs one job; fills stats and returns the outcome. Never throws for job-level problems.
+JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
+                   std::vector<StatValue>& stats) {
+  JobOutcome o;
+  o.name = job.name;
+  Stopwatch all;
+  auto fail = [&](const char* status, const std::string& message) {
+    o.status = status;
+    o.message = message;
+  };
+  try {
+    if (!job.error.empty()) {
+      fail(job.error_status.c_str(), job.error);
+      return o;
+    }
+    Stopwatch read_clock;
+    io::MeshReadResult in = io::read_mesh(job.input);
+    stats.push_back({"input_format", in.stats.format, ""});
+    stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
+    stats.push_back({"facets_read", i64(in.stats.facets_read), ""});
+    stats.push_back({"facets_skipped_degenerate_in_file", i64(in.stats.facets_degenerate), ""});
+    const TransformOutcome tr = apply_transform(job.transform, in.mesh);
+    if (!tr.ok()) {
+      fail("invalid_parameter", "transform." + tr.error);
+      return o;
+    }
+    stats.push_back({"transform_scale", tr.scale, ""});
+    stats.push_back({"read_s", read_clock.seconds(), "s"});
+
+    RunControl control;
+    control.progress = obs.progress;
+    auto sink = [&](const ClChunk& c) {
+      cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+    };
+    if (job.operation == Operation::kRaster) {
+      const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
+      o.points = st.cut_points + st.link_points;
+      o.compute_s = st.compute_s;
+      stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
+      stats.push_back({"facets_used", i64(st.facets), ""});
+      stats.push_back({"index_build_s", st.index_s, "s"});
+      stats.push_back({"lines", i64(st.lines), ""});
+      stats.push_back({"points", i64(o.points), ""});
+      stats.push_back({"cut_points", i64(st.cut_points), ""});
+      stats.push_back({"link_points", i64(st.link_points), ""});
+      stats.push_back({"adaptive_points", i64(st.adaptive_points), ""});
+      stats.push_back({"floor_points", i64(st.floor_points), ""});
+      stats.push_back({"floor_z", st.floor_z, "mm"});
+      stats.push_back({"scan_x_min", st.rect[0], "mm"});
+      stats.push_back({"scan_y_min", st.rect[1], "mm"});
+      stats.push_back({"scan_x_max", st.rect[2], "mm"});
+      stats.push_back({"scan_y_max", st.rect[3], "mm"});
+      stats.push_back({"compute_s", st.compute_s, "s"});
+      stats.push_back({"write_s", st.sink_s, "s"});
+    } else {
+      const PointList pts = read_points_csv(job.points);
+      const DropPointsStats st =
+          run_drop_points(in.mesh, job.tool, pts.xy, pts.path_sizes, sink, control);
+      o.points = st.points;
+      o.compute_s = st.compute_s;
+      stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
+      stats.push_back({"facets_used", i64(st.facets), ""});
+      stats.push_back({"index_build_s", st.index_s, "s"});
+      stats.push_back({"points", i64(st.points), ""});
+      stats.push_back({"no_contact_points", i64(st.no_contact), ""});
+      stats.push_back({"compute_s", st.compute_s, "s"});
+      stats.push_back({"write_s", st.sink_s, "s"});
+    }
+    stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
+    o.status = "ok";
+  } catch (const io::ReadError& e) {
+    fail("invalid_input", e.what());
+  } catch (const std::invalid_argument& e) {
+    fail("invalid_parameter", e.what());
+  } catch (const Cancelled&) {
+    fail("cancelled", "cancelled by the user");
+  } catch (const std::bad_alloc&) {
+    fail("out_of_memory", "ran out of memory");
+  } catch (const std::exception& e) {
+    fail("internal_error", e.what());
+  }
+  o.seconds = all.seconds();
+  o.peak_rss_bytes = peak_rss_bytes();
+  stats.push_back({"total_s", o.seconds, "s"});
+  stats.push_back({"peak_rss_bytes", i64(o.peak_rss_bytes), "bytes"});
+  stats.push_back({"threads", std::int64_t{par::max_threads()}, ""});
+  return o;
+}
+
+}  // namespace
+
+std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& obs) {
+  par::ThreadLimit limit(batch.threads);
+  out::ClFile file(batch.output, NCPATH_VERSION);
+  std::vector<JobOutcome> outcomes;
+  for (std::size_t i = 0; i < batch.jobs.size(); ++i) {
+    const JobSpec& job = batch.jobs[i];
+    if (obs.job_started) obs.job_started(i, batch.jobs.size(), job);
+    out::JobInfo info;
+    info.operation = operation_name(job.operation);
+    info.input_path = job.input.string();
+    try {
+      info.input_sha256 = out::sha256_file(job.input);
+    } catch (const std::exception&) {
+      info.input_sha256 = "";  // unreadable input: the job reports why
+    }
+    info.tool_json = job.error.empty() ? tool_json(job.tool) : "{}";
+    info.params_json = params_json(job);
+    out::ClJob cl = file.begin_job(job.name, info);
+    std::vector<StatValue> stats;
+    JobOutcome o = run_one(job, cl, obs, stats);
+    cl.set_status(o.status, o.message);
+    cl.write_stats(stats);
+    cl.close();
+    if (obs.job_finished) obs.job_finished(o);
+    outcomes.push_back(std::move(o));
+  }
+  file.close();
+  return outcomes;
+}
+
+}  // namespace ncpath::jobs

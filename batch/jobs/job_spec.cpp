@@ -1,0 +1,297 @@
+#include "batch/jobs/job_spec.hpp"
+
+#include <charconv>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+namespace ncpath::jobs {
+
+const char* operation_name(Operation op) { return op == Operation::kRaster ? "raster" : "drop"; }
+
+std::string parse_tool(const std::string& text, Cutter& out) {
+  std::vector<std::string> parts;
+  std::stringstream ss(text);
+  for (std::string p; std::getline(ss, p, ':');) parts.push_back(p);
+  auto num = [&](std::size_t i, double& v) {
+    const std::string& s = parts[i];
+    auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    return ec == std::errc() && ptr == s.data() + s.size();
+  };
+  const std::string usage = " (expected ball:D, flat:D or bull:D:r, in mm)";
+  if (parts.empty()) return "tool is empty" + usage;
+  double d = 0, r = 0;
+  const std::string& type = parts[0];
+  if (type == "ball" || type == "flat") {
+    if (parts.size() != 2 || !num(1, d)) return "tool '" + text + "' is malformed" + usage;
+    out = type == "ball" ? ball_cutter(d) : flat_cutter(d);
+  } else if (type == "bull" || type == "bullnose") {
+    if (parts.size() != 3 || !num(1, d) || !num(2, r))
+      return "tool '" + text + "' is malformed" + usage;
+    out = bull_nose_cutter(d, r);
+  } else {
+    return "tool type '" + type + "' is unknown" + usage;
+  }
+  if (std::string e = validate(out); !e.empty()) return "tool '" + text + "': " + e;
+  return "";
+}
+
+namespace {
+
+// Reads the keys of one TOML table, remembering which were used, so that anything left
+// over can be reported as an unknown key.
+class Keys {
+ public:
+  Keys(const toml::table& t, std::string prefix) : t_(t), prefix_(std::move(prefix)) {}
+
+  bool number(const char* key, double& out) {
+    const toml::node* n = take(key);
+    if (!n) return false;
+    if (auto v = n->value<double>()) {
+      out = *v;
+      return true;
+    }
+    fail(key, "must be a number");
+    return false;
+  }
+  bool string(const char* key, std::string& out) {
+    const toml::node* n = take(key);
+    if (!n) return false;
+    if (auto v = n->value<std::string>()) {
+      out = *v;
+      return true;
+    }
+    fail(key, "must be a string");
+    return false;
+  }
+  bool numbers(const char* key, std::size_t count, double* out) {
+    const toml::node* n = take(key);
+    if (!n) return false;
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != count) {
+      fail(key, "must be an array of " + std::to_string(count) + " numbers");
+      return false;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      auto v = (*a)[i].value<double>();
+      if (!v) {
+        fail(key, "must be an array of " + std::to_string(count) + " numbers");
+        return false;
+      }
+      out[i] = *v;
+    }
+    return true;
+  }
+  const toml::table* table(const char* key) {
+    const toml::node* n = take(key);
+    if (!n) return nullptr;
+    if (const toml::table* t = n->as_table()) return t;
+    fail(key, "must be a table");
+    return nullptr;
+  }
+  void fail(const std::string& key, const std::string& what) {
+    if (error.empty()) error = "'" + prefix_ + key + "' " + what;
+  }
+  // Call once every known key was read.
+  void finish() {
+    for (const auto& [k, v] : t_)
+      if (!used_.count(std::string(k.str())))
+        fail(std::string(k.str()), "is not a known key");
+  }
+  std::string error;
+
+ private:
+  const toml::node* take(const char* key) {
+    used_.insert(key);
+    return t_.get(key);
+  }
+  const toml::table& t_;
+  std::string prefix_;
+  std::set<std::string> used_;
+};
+
+void parse_raster_params(Keys& k, RasterParams& p) {
+  std::string dir;
+  if (k.string("direction", dir)) {
+    if (dir == "x")
+      p.direction = ScanDirection::kX;
+    else if (dir == "y")
+      p.direction = ScanDirection::kY;
+    else
+      k.fail("direction", "must be \"x\" or \"y\", got \"" + dir + "\"");
+  }
+  k.number("interval", p.interval);
+  k.number("step", p.step);
+  k.number("margin", p.margin);
+  double rect[4];
+  if (k.numbers("rect", 4, rect)) p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
+  k.number("adaptive_tolerance", p.adaptive_tolerance);
+  k.number("min_step", p.min_step);
+  double floor_z;
+  if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
+  double chunk;
+  if (k.number("chunk_lines", chunk)) {
+    if (chunk >= 1 && chunk <= 1e6 && chunk == static_cast<std::uint32_t>(chunk))
+      p.chunk_lines = static_cast<std::uint32_t>(chunk);
+    else
+      k.fail("chunk_lines", "must be a whole number >= 1");
+  }
+  k.number("strip_height", p.strip_height);
+  k.number("bin_width", p.bin_width);
+}
+
+JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem::path& base) {
+  JobSpec job;
+  job.name = "job" + std::to_string(index + 1);
+  Keys k(t, "");
+  k.string("name", job.name);
+  std::string op = "raster";
+  k.string("operation", op);
+  if (op == "raster")
+    job.operation = Operation::kRaster;
+  else if (op == "drop")
+    job.operation = Operation::kDrop;
+  else
+    k.fail("operation", "must be \"raster\" or \"drop\", got \"" + op + "\"");
+  std::string input;
+  if (k.string("input", input))
+    job.input = base / input;
+  else
+    k.fail("input", "is required (a mesh file: STL or OFF)");
+  if (k.string("tool", job.tool_text)) {
+    if (std::string e = parse_tool(job.tool_text, job.tool); !e.empty()) k.fail("tool", e);
+  } else {
+    k.fail("tool", "is required (e.g. \"ball:5\")");
+  }
+  if (const toml::table* tt = k.table("transform")) {
+    Keys tk(*tt, "transform.");
+    tk.number("scale", job.transform.scale);
+    double fit;
+    if (tk.number("fit_xy", fit)) job.transform.fit_xy_mm = fit;
+    double tr[3];
+    if (tk.numbers("translate", 3, tr)) job.transform.translate = Vec3(tr[0], tr[1], tr[2]);
+    tk.finish();
+    if (tk.error.empty())
+      if (std::string e = validate(job.transform); !e.empty()) tk.fail("", e);
+    if (!tk.error.empty()) k.fail("transform", ": " + tk.error);
+  }
+  if (const toml::table* pt = k.table("params")) {
+    Keys pk(*pt, "params.");
+    if (job.operation == Operation::kRaster) {
+      parse_raster_params(pk, job.raster);
+    } else {
+      std::string pts;
+      if (pk.string("points", pts)) job.points = base / pts;
+    }
+    pk.finish();
+    if (pk.error.empty() && job.operation == Operation::kRaster)
+      if (std::string e = validate(job.raster); !e.empty()) pk.fail("", e);
+    if (!pk.error.empty()) k.error = k.error.empty() ? pk.error : k.error;
+  }
+  if (job.operation == Operation::kDrop && job.points.empty())
+    k.fail("params.points", "is required for a drop job (CSV of x,y lines)");
+  k.finish();
+  if (!k.error.empty()) {
+    job.error = k.error;
+    job.error_status = "invalid_parameter";
+  }
+  return job;
+}
+
+}  // namespace
+
+BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
+                           const std::string& source_name) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream os;
+    os << source_name << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
+       << e.description();
+    throw std::runtime_error(os.str());
+  }
+  BatchSpec b;
+  Keys k(root, "");
+  std::string out;
+  if (k.string("output", out)) b.output = base_dir / out;
+  double threads;
+  if (k.number("threads", threads)) {
+    if (threads >= 0 && threads == static_cast<int>(threads))
+      b.threads = static_cast<int>(threads);
+    else
+      k.fail("threads", "must be a whole number >= 0");
+  }
+  const toml::node* jobs = root.get("job");
+  k.table("job");  // marks the key as known; its type is checked below
+  k.error.clear();
+  k.finish();
+  if (!k.error.empty()) throw std::runtime_error(source_name + ": " + k.error);
+  const toml::array* arr = jobs ? jobs->as_array() : nullptr;
+  if (!arr || arr->empty())
+    throw std::runtime_error(source_name + ": no [[job]] tables: nothing to run");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < arr->size(); ++i) {
+    const toml::table* t = (*arr)[i].as_table();
+    if (!t) throw std::runtime_error(source_name + ": job " + std::to_string(i + 1) + " is not a table");
+    JobSpec job = parse_job(*t, i, base_dir);
+    if (!names.insert(job.name).second) {
+      job.error = "job name '" + job.name + "' is used twice";
+      job.error_status = "invalid_parameter";
+      job.name += "#" + std::to_string(i + 1);
+    }
+    b.jobs.push_back(std::move(job));
+  }
+  return b;
+}
+
+BatchSpec parse_batch_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open the batch file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_batch_text(ss.str(), path.parent_path(), path.string());
+}
+
+std::string tool_json(const Cutter& c) {
+  nlohmann::ordered_json j;
+  j["type"] = cutter_type_name(c.type);
+  j["diameter_mm"] = 2 * c.radius;
+  j["corner_radius_mm"] = c.corner_radius;
+  return j.dump();
+}
+
+std::string params_json(const JobSpec& job) {
+  nlohmann::ordered_json j;
+  j["operation"] = operation_name(job.operation);
+  nlohmann::ordered_json t;
+  t["scale"] = job.transform.scale;
+  t["translate"] = {job.transform.translate.x(), job.transform.translate.y(),
+                    job.transform.translate.z()};
+  t["fit_xy"] = job.transform.fit_xy_mm ? nlohmann::ordered_json(*job.transform.fit_xy_mm)
+                                        : nlohmann::ordered_json(nullptr);
+  j["transform"] = t;
+  if (job.operation == Operation::kRaster) {
+    const RasterParams& p = job.raster;
+    j["direction"] = p.direction == ScanDirection::kX ? "x" : "y";
+    j["interval"] = p.interval;
+    j["step"] = p.step;
+    j["margin"] = p.margin;
+    j["rect"] = p.rect ? nlohmann::ordered_json(*p.rect) : nlohmann::ordered_json(nullptr);
+    j["adaptive_tolerance"] = p.adaptive_tolerance;
+    j["min_step"] = p.min_step;
+    j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
+    j["chunk_lines"] = p.chunk_lines;
+    j["strip_height"] = p.strip_height;
+    j["bin_width"] = p.bin_width;
+  } else {
+    j["points"] = job.points.string();
+  }
+  return j.dump();
+}
+
+}  // namespace ncpath::jobs

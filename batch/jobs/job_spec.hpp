@@ -1,0 +1,68 @@
+#pragma once
+// Job specifications: what to run, on which input, with which tool and parameters. Built
+// from a TOML batch file (`ncpath run jobs.toml`) or from the command line; both end in the
+// same JobSpec, so a job behaves the same whichever way it was given.
+//
+// Batch file (all lengths in mm; relative paths are relative to the TOML file):
+//
+//   output  = "out/demo.h5"      # required unless given with --out
+//   threads = 0                  # 0 = all cores
+//   [[job]]
+//   name      = "bunny-ball5"     # unique; default "job<N>"
+//   operation = "raster"          # "raster" or "drop"
+//   input     = "../datasets/cache/meshes/bunny00.off"
+//   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
+//   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
+//   params    = { interval = 0.5, step = 0.1 }     # see docs/cli.md for every key
+//
+// A job whose keys or values are wrong is still a job: it carries the error (status
+// "invalid_parameter" and a message naming the key) and the batch records it and goes on.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/raster.hpp"
+#include "kernels/cutters/cutter.hpp"
+#include "kernels/mesh/mesh_transform.hpp"
+
+namespace ncpath::jobs {
+
+enum class Operation : std::uint8_t { kRaster, kDrop };
+
+struct JobSpec {
+  std::string name;
+  Operation operation = Operation::kRaster;
+  std::filesystem::path input;    // mesh: STL or OFF
+  std::filesystem::path points;   // drop: CSV of "x,y" lines (blank line = new path)
+  MeshTransform transform;
+  std::string tool_text;          // as the user wrote it, e.g. "ball:5"
+  Cutter tool;
+  RasterParams raster;
+  std::string error;              // non-empty: the spec is invalid; status + message below
+  std::string error_status;       // "invalid_parameter"
+};
+
+struct BatchSpec {
+  std::filesystem::path output;
+  int threads = 0;
+  std::vector<JobSpec> jobs;
+};
+
+// "ball:5" -> ball_cutter(5). Returns an error message naming the problem, or "".
+std::string parse_tool(const std::string& text, Cutter& out);
+
+// Parses a batch file. Throws std::runtime_error for a file that cannot be read or is not
+// valid TOML (message with file:line:column). Per-job problems land in JobSpec::error.
+BatchSpec parse_batch_file(const std::filesystem::path& path);
+BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
+                           const std::string& source_name);
+
+const char* operation_name(Operation op);  // "raster", "drop"
+
+// The parameters of a job as JSON text, defaults included (HDF5 `params` attribute).
+std::string params_json(const JobSpec& job);
+// The tool as JSON text: {"type":..., "diameter_mm":..., "corner_radius_mm":...}.
+std::string tool_json(const Cutter& tool);
+
+}  // namespace ncpath::jobs

@@ -1,0 +1,154 @@
+// The ncpath program end to end: batch semantics, statuses in HDF5, exit codes, thread
+// determinism of the written datasets, help texts.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "batch/io/stl_writer.hpp"
+#include "tests/batch/output/h5_read.hpp"
+#include "tests/support/meshes.hpp"
+
+namespace ncpath {
+namespace {
+
+namespace h5 = out::test;
+
+struct Run {
+  int exit_code;
+  std::string output;
+};
+
+Run ncpath(const std::string& args) {
+  const std::string cmd = std::string(NCPATH_BINARY_DIR) + "/batch/ncpath " + args + " 2>&1";
+  Run r{-1, ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (p && fgets(buf.data(), buf.size(), p)) r.output += buf.data();
+  const int status = p ? pclose(p) : -1;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::filesystem::path fixture_dir() {
+  const auto dir = h5::out_dir("cli");
+  const TriangleMesh m = test::height_field(20, 40, [](double x, double y) {
+    return 2 + std::sin(x / 5) * std::cos(y / 4);
+  });
+  io::write_binary_stl(dir / "part.stl", m);
+  std::ofstream(dir / "xy.csv") << "# x,y\n1,1\n20,20\n\n500,500\n";
+  return dir;
+}
+
+TEST(Cli, BatchRecordsEveryJobAndGoesOnAfterFailures) {
+  const auto dir = fixture_dir();
+  std::ofstream(dir / "jobs.toml") << R"(
+output = "out.h5"
+[[job]]
+name = "good"
+input = "part.stl"
+tool = "ball:4"
+params = { interval = 2, step = 0.5 }
+[[job]]
+name = "missing"
+input = "nope.stl"
+tool = "ball:4"
+[[job]]
+name = "bad-corner"
+input = "part.stl"
+tool = "bull:4:3"
+[[job]]
+name = "points"
+operation = "drop"
+input = "part.stl"
+tool = "flat:3"
+params = { points = "xy.csv" }
+)";
+  const Run r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.output;  // some job failed
+  EXPECT_NE(r.output.find("4 job(s), 2 ok, 2 failed"), std::string::npos) << r.output;
+  h5::Id f = h5::open_read(dir / "out.h5");
+  EXPECT_EQ(h5::attr_str(f, "format"), "ncpath-cl");
+  h5::Id good(H5Gopen2(f, "/jobs/good", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(good, "status"), "ok");
+  EXPECT_NE(h5::attr_str(good, "params").find("\"interval\":2.0"), std::string::npos);
+  EXPECT_NE(h5::attr_str(good, "tool").find("\"diameter_mm\":4.0"), std::string::npos);
+  EXPECT_EQ(h5::attr_str(good, "input_sha256").size(), 64u);
+  const auto offsets = h5::read_all<std::int64_t>(f, "/jobs/good/cl/path_offsets", H5T_NATIVE_INT64);
+  // 40 / 2 + 1 = 21 lines of 40 / 0.5 + 1 = 81 points, 20 links in between.
+  EXPECT_EQ(offsets.size(), 21u + 20u + 1u);
+  EXPECT_EQ(offsets[1], 81);
+  h5::Id missing(H5Gopen2(f, "/jobs/missing", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(missing, "status"), "invalid_input");
+  EXPECT_NE(h5::attr_str(missing, "message").find("nope.stl"), std::string::npos);
+  h5::Id bad(H5Gopen2(f, "/jobs/bad-corner", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(bad, "status"), "invalid_parameter");
+  EXPECT_NE(h5::attr_str(bad, "message").find("corner radius 3"), std::string::npos);
+  // Drop: input order kept, the miss flagged with NaN and contact 0.
+  const auto pts = h5::read_all<double>(f, "/jobs/points/cl/points", H5T_NATIVE_DOUBLE);
+  const auto kinds = h5::read_all<std::uint8_t>(f, "/jobs/points/cl/contact_kind", H5T_NATIVE_UINT8);
+  const auto poff = h5::read_all<std::int64_t>(f, "/jobs/points/cl/path_offsets", H5T_NATIVE_INT64);
+  ASSERT_EQ(pts.size(), 9u);
+  EXPECT_EQ(poff, (std::vector<std::int64_t>{0, 2, 3}));  // the blank line split the paths
+  EXPECT_EQ(pts[3], 20);
+  EXPECT_FALSE(std::isnan(pts[5]));
+  EXPECT_TRUE(std::isnan(pts[8]));
+  EXPECT_EQ(kinds[2], 0);
+}
+
+TEST(Cli, OneAndTwoThreadsWriteIdenticalDatasets) {
+  const auto dir = fixture_dir();
+  for (const char* t : {"1", "2"}) {
+    const Run r = ncpath("raster --mesh " + (dir / "part.stl").string() +
+                         " --tool bull:6:1 --interval 0.7 --step 0.2 --adaptive 0.002 --threads " +
+                         t + " --quiet --out " + (dir / (std::string("t") + t + ".h5")).string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  h5::Id a = h5::open_read(dir / "t1.h5");
+  h5::Id b = h5::open_read(dir / "t2.h5");
+  for (const char* ds : {"points", "path_offsets", "path_kind", "contact_kind"}) {
+    const std::string path = std::string("/jobs/raster/cl/") + ds;
+    EXPECT_GT(h5::read_all<std::uint8_t>(a, path, H5T_NATIVE_UINT8).size(), 0u) << path;
+  }
+  EXPECT_EQ(h5::read_all<double>(a, "/jobs/raster/cl/points", H5T_NATIVE_DOUBLE),
+            h5::read_all<double>(b, "/jobs/raster/cl/points", H5T_NATIVE_DOUBLE));
+  EXPECT_EQ(h5::read_all<std::int64_t>(a, "/jobs/raster/cl/path_offsets", H5T_NATIVE_INT64),
+            h5::read_all<std::int64_t>(b, "/jobs/raster/cl/path_offsets", H5T_NATIVE_INT64));
+  EXPECT_EQ(h5::read_all<std::uint8_t>(a, "/jobs/raster/cl/contact_kind", H5T_NATIVE_UINT8),
+            h5::read_all<std::uint8_t>(b, "/jobs/raster/cl/contact_kind", H5T_NATIVE_UINT8));
+}
+
+TEST(Cli, BadCommandLinesAreRejectedWithTheKey) {
+  const auto dir = fixture_dir();
+  const std::string mesh = " --mesh " + (dir / "part.stl").string() + " --quiet --out " +
+                           (dir / "x.h5").string();
+  Run r = ncpath("raster" + mesh + " --step 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("step must be a positive number"), std::string::npos) << r.output;
+  r = ncpath("raster" + mesh + " --tool ball:-2");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("diameter"), std::string::npos) << r.output;
+  r = ncpath("raster" + mesh + " --no-such-option 3");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("no-such-option"), std::string::npos) << r.output;
+  r = ncpath("run " + (dir / "absent.toml").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("absent.toml"), std::string::npos);
+}
+
+TEST(Cli, HelpDocumentsEveryOption) {
+  const Run top = ncpath("--help");
+  for (const char* s : {"raster", "drop", "run"})
+    EXPECT_NE(top.output.find(s), std::string::npos) << s;
+  const Run r = ncpath("raster --help");
+  for (const char* s : {"--mesh", "--tool", "--interval", "--step", "--out", "--threads",
+                        "--direction", "--margin", "--rect", "--adaptive", "--min-step",
+                        "--floor-z", "--fit-xy", "--scale", "--translate", "--quiet"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << s;
+  EXPECT_NE(ncpath("drop --help").output.find("--points"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ncpath
