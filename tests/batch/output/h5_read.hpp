@@ -1,0 +1,127 @@
+#pragma once
+// Test-only HDF5 reading helpers, written directly against the C API and independent of the
+// writer's own helpers (batch/output/h5_util.*), so that the tests are an outside oracle.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace ncpath::out::test {
+
+// Owns any HDF5 id; throws when constructed from a failed call.
+class Id {
+ public:
+  explicit Id(hid_t id, const std::string& what = "HDF5 call") : id_(id) {
+    if (id_ < 0) throw std::runtime_error("test reader: " + what + " failed");
+  }
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  ~Id() {
+    if (id_ >= 0) H5Idec_ref(id_);
+  }
+  operator hid_t() const { return id_; }  // NOLINT: convenience in tests
+
+ private:
+  hid_t id_;
+};
+
+inline Id open_read(const std::filesystem::path& path) {
+  return Id(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path.string());
+}
+
+struct StringInfo {
+  std::string value;
+  bool variable = false;
+  H5T_cset_t cset = H5T_CSET_ERROR;
+};
+
+// Reads a scalar string attribute (variable or fixed length).
+inline StringInfo read_string_attr(hid_t obj, const char* name) {
+  Id attr(H5Aopen(obj, name, H5P_DEFAULT), std::string("open attribute ") + name);
+  Id type(H5Aget_type(attr));
+  if (H5Tget_class(type) != H5T_STRING) throw std::runtime_error("not a string attribute");
+  StringInfo out;
+  out.cset = H5Tget_cset(type);
+  out.variable = H5Tis_variable_str(type) > 0;
+  if (out.variable) {
+    char* ptr = nullptr;
+    if (H5Aread(attr, type, &ptr) < 0) throw std::runtime_error("read vlen attribute");
+    out.value = ptr != nullptr ? ptr : "";
+    H5free_memory(ptr);
+  } else {
+    std::vector<char> buf(H5Tget_size(type) + 1, '\0');
+    if (H5Aread(attr, type, buf.data()) < 0) throw std::runtime_error("read attribute");
+    out.value = buf.data();
+  }
+  return out;
+}
+
+inline std::string attr_str(hid_t obj, const char* name) {
+  return read_string_attr(obj, name).value;
+}
+
+inline std::int64_t attr_i64(hid_t obj, const char* name) {
+  Id attr(H5Aopen(obj, name, H5P_DEFAULT), std::string("open attribute ") + name);
+  std::int64_t v = 0;
+  if (H5Aread(attr, H5T_NATIVE_INT64, &v) < 0) throw std::runtime_error("read attribute");
+  return v;
+}
+
+inline bool has_attr(hid_t obj, const char* name) { return H5Aexists(obj, name) > 0; }
+
+inline std::vector<hsize_t> dims_of(hid_t ds, std::vector<hsize_t>* max_dims = nullptr) {
+  Id space(H5Dget_space(ds));
+  const int rank = H5Sget_simple_extent_ndims(space);
+  std::vector<hsize_t> dims(rank), maxd(rank);
+  H5Sget_simple_extent_dims(space, dims.data(), maxd.data());
+  if (max_dims != nullptr) *max_dims = maxd;
+  return dims;
+}
+
+// Reads a whole dataset converted to mem_type (T must match it).
+template <typename T>
+std::vector<T> read_all(hid_t file, const std::string& path, hid_t mem_type) {
+  Id ds(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "open " + path);
+  Id space(H5Dget_space(ds));
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  std::vector<T> out(static_cast<std::size_t>(n));
+  if (n > 0 && H5Dread(ds, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
+    throw std::runtime_error("read " + path);
+  }
+  return out;
+}
+
+inline std::vector<char> file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<char>(std::istreambuf_iterator<char>(in), {});
+}
+
+// Byte equality of two files, reporting sizes and the first differing offset (not the bytes).
+inline ::testing::AssertionResult same_bytes(const std::filesystem::path& a,
+                                             const std::filesystem::path& b) {
+  const std::vector<char> x = file_bytes(a), y = file_bytes(b);
+  if (x.empty()) return ::testing::AssertionFailure() << a << " is empty or missing";
+  if (x == y) return ::testing::AssertionSuccess();
+  std::size_t i = 0;
+  while (i < x.size() && i < y.size() && x[i] == y[i]) ++i;
+  return ::testing::AssertionFailure() << a << " (" << x.size() << " bytes) and " << b << " ("
+                                       << y.size() << " bytes) differ from byte " << i;
+}
+
+// A clean per-test output directory under the build tree.
+inline std::filesystem::path out_dir(const std::string& test_name) {
+  const std::filesystem::path dir =
+      std::filesystem::path(NCPATH_BINARY_DIR) / "test_out" / "batch_output" / test_name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace ncpath::out::test
