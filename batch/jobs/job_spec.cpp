@@ -163,7 +163,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
   else
     k.fail("input", "is required (a mesh file: STL or OFF)");
   if (k.string("tool", job.tool_text)) {
-    if (std::string e = parse_tool(job.tool_text, job.tool); !e.empty()) k.fail("tool", e);
+    if (std::string e = parse_tool(job.tool_text, job.tool); !e.empty() && k.error.empty())
+      k.error = e;  // already names the tool
   } else {
     k.fail("tool", "is required (e.g. \"ball:5\")");
   }

@@ -94,8 +94,11 @@ void ClJob::append_paths(std::span<const double> xyz, std::span<const std::uint8
                                   std::to_string(contact[i]) + " (valid: 0..3)");
     }
   }
+  // x and y are always finite; z is NaN exactly where the tool touched nothing (the point
+  // operation reports misses that way instead of inventing a height).
   for (std::size_t i = 0; i < xyz.size(); ++i) {
-    if (!std::isfinite(xyz[i])) {
+    const bool z_of_miss = i % 3 == 2 && contact[i / 3] == kContactNone && std::isnan(xyz[i]);
+    if (!std::isfinite(xyz[i]) && !z_of_miss) {
       throw std::invalid_argument(where + "point " + std::to_string(i / 3) +
                                   " has a non-finite coordinate");
     }

@@ -106,7 +106,8 @@ class ClJob {
   ~ClJob();  // close(), errors swallowed
 
   // Appends whole paths in cutting order.
-  //   xyz:        3*n doubles, x0 y0 z0 x1 y1 z1 ...: tool-tip (CL) points, mm, all finite.
+  //   xyz:        3*n doubles, x0 y0 z0 x1 y1 z1 ...: tool-tip (CL) points, mm, finite except
+  //               z = NaN at points whose contact is kContactNone (the tool touched nothing).
   //   contact:    n bytes, one kContact* code per point.
   //   path_sizes: one point count per path; their sum is n (empty paths are allowed).
   //   path_kinds: one PathKind value per path.

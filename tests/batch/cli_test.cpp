@@ -16,14 +16,14 @@ namespace {
 
 namespace h5 = out::test;
 
-struct Run {
+struct CmdResult {
   int exit_code;
   std::string output;
 };
 
-Run ncpath(const std::string& args) {
+CmdResult ncpath(const std::string& args) {
   const std::string cmd = std::string(NCPATH_BINARY_DIR) + "/batch/ncpath " + args + " 2>&1";
-  Run r{-1, ""};
+  CmdResult r{-1, ""};
   FILE* p = popen(cmd.c_str(), "r");
   std::array<char, 4096> buf;
   while (p && fgets(buf.data(), buf.size(), p)) r.output += buf.data();
@@ -66,7 +66,7 @@ input = "part.stl"
 tool = "flat:3"
 params = { points = "xy.csv" }
 )";
-  const Run r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
+  const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
   EXPECT_EQ(r.exit_code, 1) << r.output;  // some job failed
   EXPECT_NE(r.output.find("4 job(s), 2 ok, 2 failed"), std::string::npos) << r.output;
   h5::Id f = h5::open_read(dir / "out.h5");
@@ -101,7 +101,7 @@ params = { points = "xy.csv" }
 TEST(Cli, OneAndTwoThreadsWriteIdenticalDatasets) {
   const auto dir = fixture_dir();
   for (const char* t : {"1", "2"}) {
-    const Run r = ncpath("raster --mesh " + (dir / "part.stl").string() +
+    const CmdResult r = ncpath("raster --mesh " + (dir / "part.stl").string() +
                          " --tool bull:6:1 --interval 0.7 --step 0.2 --adaptive 0.002 --threads " +
                          t + " --quiet --out " + (dir / (std::string("t") + t + ".h5")).string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -124,7 +124,7 @@ TEST(Cli, BadCommandLinesAreRejectedWithTheKey) {
   const auto dir = fixture_dir();
   const std::string mesh = " --mesh " + (dir / "part.stl").string() + " --quiet --out " +
                            (dir / "x.h5").string();
-  Run r = ncpath("raster" + mesh + " --step 0");
+  CmdResult r = ncpath("raster" + mesh + " --step 0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("step must be a positive number"), std::string::npos) << r.output;
   r = ncpath("raster" + mesh + " --tool ball:-2");
@@ -139,10 +139,10 @@ TEST(Cli, BadCommandLinesAreRejectedWithTheKey) {
 }
 
 TEST(Cli, HelpDocumentsEveryOption) {
-  const Run top = ncpath("--help");
+  const CmdResult top = ncpath("--help");
   for (const char* s : {"raster", "drop", "run"})
     EXPECT_NE(top.output.find(s), std::string::npos) << s;
-  const Run r = ncpath("raster --help");
+  const CmdResult r = ncpath("raster --help");
   for (const char* s : {"--mesh", "--tool", "--interval", "--step", "--out", "--threads",
                         "--direction", "--margin", "--rect", "--adaptive", "--min-step",
                         "--floor-z", "--fit-xy", "--scale", "--translate", "--quiet"})

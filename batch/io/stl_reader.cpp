@@ -1,0 +1,249 @@
+// STL, binary and ASCII, from a buffer holding the whole file.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "batch/io/reader_support.hpp"
+
+namespace ncpath::io::detail {
+namespace {
+
+static_assert(std::endian::native == std::endian::little,
+              "the binary STL reader assumes a little-endian host");
+static_assert(std::numeric_limits<float>::is_iec559);
+
+constexpr std::uint64_t kHeaderBytes = 80;
+constexpr std::uint64_t kFirstFacet = 84;  // header + uint32 facet count
+constexpr std::uint64_t kFacetBytes = 50;  // normal, 3 vertices (12 float32) + uint16
+// A soup mesh has 3 vertices per facet, indexed with uint32.
+constexpr std::uint64_t kMaxSoupFacets = std::numeric_limits<std::uint32_t>::max() / 3;
+
+const char* const kAxis[3] = {"x", "y", "z"};
+
+std::string ordinal_vertex(int k) { return "vertex " + std::to_string(k + 1); }
+
+std::uint32_t load_u32(const char* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+
+std::string byte_at(std::uint64_t offset, std::uint64_t facet_index) {
+  return "byte " + std::to_string(offset) + " (facet " + std::to_string(facet_index + 1) + ")";
+}
+
+// Looks like text: no control characters other than whitespace in the first kilobyte. A
+// binary STL's facet count alone (bytes 80-83) nearly always holds a zero byte.
+bool looks_like_text(std::string_view bytes) {
+  const std::size_t n = std::min<std::size_t>(bytes.size(), 1024);
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned char c = static_cast<unsigned char>(bytes[i]);
+    if (c < 0x20 && c != '\t' && c != '\n' && c != '\r' && c != '\v' && c != '\f') return false;
+    if (c == 0x7F) return false;
+  }
+  return true;
+}
+
+MeshReadResult parse_binary(const std::filesystem::path& path, std::string_view bytes) {
+  const std::uint64_t size = bytes.size();
+  const std::uint64_t count = load_u32(bytes.data() + kHeaderBytes);
+  const std::uint64_t expected = kFirstFacet + kFacetBytes * count;
+  const std::string declares = "the header declares " + std::to_string(count) +
+                               " facets (84 + 50 * " + std::to_string(count) + " = " +
+                               std::to_string(expected) + " bytes), the file has " +
+                               std::to_string(size) + " bytes";
+  if (size < expected) {
+    const std::uint64_t complete = (size - kFirstFacet) / kFacetBytes;
+    const std::uint64_t left = (size - kFirstFacet) % kFacetBytes;
+    const std::uint64_t at = kFirstFacet + complete * kFacetBytes;
+    if (left != 0)
+      throw ReadError(path, byte_at(at, complete),
+                      "truncated file: expected 50 bytes for facet " +
+                          std::to_string(complete + 1) + ", " + std::to_string(left) + " left (" +
+                          declares + ")");
+    throw ReadError(
+        path, byte_at(at, complete),
+        "truncated file: it ends after facet " + std::to_string(complete) + " (" + declares + ")");
+  }
+  if (size > expected) {
+    throw ReadError(path, "byte 80 (facet count)",
+                    "facet count disagrees with the file size: " + declares + ", " +
+                        std::to_string(size - expected) + " bytes too many");
+  }
+  if (count > kMaxSoupFacets)
+    throw ReadError(path, "byte 80 (facet count)",
+                    std::to_string(count) + " facets are too many (at most " +
+                        std::to_string(kMaxSoupFacets) + " with 32-bit vertex indices)");
+
+  MeshBuilder builder("stl-binary");
+  builder.result().stats.facets_in_file = count;
+  builder.reserve(3 * count, count);
+  const char* facet = bytes.data() + kFirstFacet;
+  for (std::uint64_t f = 0; f < count; ++f, facet += kFacetBytes) {
+    float xyz[9];
+    std::memcpy(xyz, facet + 12, sizeof xyz);  // skip the normal
+    Vec3 v[3];
+    for (int k = 0; k < 3; ++k) {
+      for (int a = 0; a < 3; ++a) {
+        const float c = xyz[3 * k + a];
+        if (!std::isfinite(c)) {
+          const std::uint64_t at = kFirstFacet + f * kFacetBytes + 12 + 4 * (3 * k + a);
+          throw ReadError(path, byte_at(at, f),
+                          "non-finite coordinate in facet " + std::to_string(f + 1) + ": " +
+                              ordinal_vertex(k) + " has " + kAxis[a] + " = " + num(c));
+        }
+        v[k][a] = c;
+      }
+    }
+    builder.add_soup_facet(v[0], v[1], v[2]);
+  }
+  return builder.finish(path);
+}
+
+// ASCII STL: solid / facet normal / outer loop / 3 x vertex / endloop / endfacet /
+// endsolid, keywords in any case, several solids in a row allowed.
+class AsciiStlParser {
+ public:
+  AsciiStlParser(const std::filesystem::path& path, std::string_view bytes)
+      : path_(path), scan_(bytes), builder_("stl-ascii") {
+    // About 250 bytes per facet in typical exporters' output.
+    const std::size_t guess = std::min<std::size_t>(bytes.size() / 250 + 16, kMaxSoupFacets);
+    builder_.reserve(3 * guess, guess);
+  }
+
+  MeshReadResult parse() {
+    std::string_view tok = scan_.next_token();
+    if (!keyword_is(tok, "solid")) fail("expected 'solid' at the start, found " + quote(tok));
+    while (!tok.empty()) {
+      if (!keyword_is(tok, "solid"))
+        fail("unexpected " + quote(tok) +
+             " after 'endsolid' (expected the end of the file "
+             "or another 'solid')");
+      parse_solid();
+      tok = scan_.next_token();
+    }
+    builder_.result().stats.facets_in_file = facets_;
+    return builder_.finish(path_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& problem) {
+    throw ReadError(path_, "line " + std::to_string(scan_.line()), problem);
+  }
+
+  std::string facet_name() const { return "facet " + std::to_string(facets_); }
+  std::string in_facet() const { return "in " + facet_name(); }
+
+  // What the next token should be, for messages: vertex -1 is the facet normal.
+  std::string describe(int vertex, int axis) const {
+    if (vertex < 0) return std::string("the normal's ") + kAxis[axis] + " " + in_facet();
+    return std::string("the ") + kAxis[axis] + " coordinate of " + ordinal_vertex(vertex) + " " +
+           in_facet();
+  }
+
+  // Next token; the end of the file inside a solid is an unterminated solid. Messages are
+  // only built on failure: this runs for every token of big files.
+  template <class Describe>
+  std::string_view need_described(const Describe& expecting) {
+    const std::string_view tok = scan_.next_token();
+    if (tok.empty())
+      fail("unterminated solid (started at line " + std::to_string(solid_line_) +
+           "): the file ends where " + expecting() + " was expected, 'endsolid' is missing");
+    return tok;
+  }
+  std::string_view need(const char* expecting) {
+    return need_described([expecting] { return std::string(expecting); });
+  }
+
+  void expect(const char* keyword, const char* after) {
+    const std::string_view tok =
+        need_described([keyword] { return "'" + std::string(keyword) + "'"; });
+    if (!keyword_is(tok, keyword))
+      fail("expected '" + std::string(keyword) + "' after '" + after + "' " + in_facet() +
+           ", found " + quote(tok));
+  }
+
+  // A vertex coordinate must be finite; the normal (vertex -1) is only checked for syntax.
+  double coordinate(int vertex, int axis) {
+    const std::string_view tok = need_described([&] { return describe(vertex, axis); });
+    double x;
+    if (!parse_double(tok, x)) fail("bad number " + quote(tok) + " for " + describe(vertex, axis));
+    if (vertex >= 0 && !std::isfinite(x))
+      fail("non-finite coordinate in " + facet_name() + ": " + ordinal_vertex(vertex) + " has " +
+           kAxis[axis] + " = " + std::string(tok) + ", which is not a finite number");
+    return x;
+  }
+
+  void parse_solid() {
+    solid_line_ = scan_.line();
+    scan_.skip_line();  // the solid's name
+    for (;;) {
+      const std::string_view tok = need("'facet' or 'endsolid'");
+      if (keyword_is(tok, "endsolid")) {
+        scan_.skip_line();
+        return;
+      }
+      if (!keyword_is(tok, "facet")) fail("expected 'facet' or 'endsolid', found " + quote(tok));
+      parse_facet();
+    }
+  }
+
+  void parse_facet() {
+    ++facets_;
+    if (facets_ > kMaxSoupFacets)
+      fail("too many facets (at most " + std::to_string(kMaxSoupFacets) +
+           " with 32-bit vertex indices)");
+    std::string_view tok = need("'normal' or 'outer'");
+    if (keyword_is(tok, "normal")) {
+      // Parsed for syntax only: the normal is recomputed downstream, and exporters write
+      // nan normals for degenerate facets.
+      for (int a = 0; a < 3; ++a) coordinate(-1, a);
+      tok = need("'outer'");
+    }
+    if (!keyword_is(tok, "outer"))
+      fail("expected 'outer loop' " + in_facet() + ", found " + quote(tok));
+    expect("loop", "outer");
+    Vec3 v[3];
+    int count = 0;
+    for (;;) {
+      tok = need("'vertex' or 'endloop'");
+      if (keyword_is(tok, "endloop")) break;
+      if (!keyword_is(tok, "vertex"))
+        fail("expected 'vertex' or 'endloop' " + in_facet() + ", found " + quote(tok));
+      if (count == 3) fail(facet_name() + " has more than 3 vertices in its loop");
+      for (int a = 0; a < 3; ++a) v[count][a] = coordinate(count, a);
+      ++count;
+    }
+    if (count != 3)
+      fail(facet_name() + " has " + std::to_string(count) + " vertices in its loop, expected 3");
+    expect("endfacet", "endloop");
+    builder_.add_soup_facet(v[0], v[1], v[2]);
+  }
+
+  const std::filesystem::path& path_;
+  TextScanner scan_;
+  MeshBuilder builder_;
+  std::uint64_t facets_ = 0;
+  std::uint64_t solid_line_ = 1;
+};
+
+}  // namespace
+
+MeshReadResult parse_stl(const std::filesystem::path& path, std::string_view bytes) {
+  if (bytes.empty()) throw ReadError(path, "", "empty file (0 bytes): not an STL file");
+  if (bytes.size() >= kFirstFacet &&
+      kFirstFacet + kFacetBytes * load_u32(bytes.data() + kHeaderBytes) == bytes.size())
+    return parse_binary(path, bytes);  // size-consistent: binary, whatever the header says
+  if (starts_with_keyword(bytes, "solid", false) && looks_like_text(bytes))
+    return AsciiStlParser(path, bytes).parse();
+  if (bytes.size() < kFirstFacet)
+    throw ReadError(path, "",
+                    "not an STL file: " + std::to_string(bytes.size()) +
+                        " bytes are too few for a binary STL (at least 84) and it is not an "
+                        "ASCII STL (text starting with 'solid')");
+  return parse_binary(path, bytes);  // reports the count/size mismatch
+}
+
+}  // namespace ncpath::io::detail
