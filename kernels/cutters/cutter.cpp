@@ -31,14 +31,6 @@ std::string validate(const Cutter& c) {
   return os.str();
 }
 
-double profile_height(const Cutter& c, double rho) {
-  const double a = c.flat_radius();
-  if (rho <= a) return 0.0;
-  const double t = rho - a;
-  const double r = c.corner_radius;
-  return r - std::sqrt(std::max(0.0, r * r - t * t));
-}
-
 const char* cutter_type_name(CutterType type) {
   switch (type) {
     case CutterType::kBall: return "ball";

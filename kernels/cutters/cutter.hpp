@@ -5,6 +5,8 @@
 //   ball:      r = R (a = 0)
 //   flat:      r = 0 (a = R)
 //   bull-nose: 0 < r <= R
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -31,7 +33,12 @@ std::string validate(const Cutter& cutter);
 
 // Height of the cutter's lower surface above its tip at horizontal distance rho from the
 // axis, for 0 <= rho <= R (mm). Convex and non-decreasing in rho.
-double profile_height(const Cutter& cutter, double rho);
+inline double profile_height(const Cutter& c, double rho) {
+  const double a = c.radius - c.corner_radius;
+  if (rho <= a) return 0.0;
+  const double t = rho - a, r = c.corner_radius;
+  return r - std::sqrt(std::max(0.0, r * r - t * t));
+}
 
 const char* cutter_type_name(CutterType type);  // "ball", "flat", "bullnose"
 

@@ -32,6 +32,7 @@ bool prepare_facet(const Vec3& a, const Vec3& b, const Vec3& c, PreparedFacet& f
   f.n = n;
   f.plane_d = n.dot(a);
   f.vertical = std::abs(n.z()) < tol::kVerticalNormalZ;
+  f.xy_winding = ((b - a).cross(c - a)).z() > 0 ? 1.0 : -1.0;
   f.min_x = std::min({a.x(), b.x(), c.x()});
   f.max_x = std::max({a.x(), b.x(), c.x()});
   f.min_y = std::min({a.y(), b.y(), c.y()});
@@ -51,6 +52,7 @@ bool prepare_facet(const Vec3& a, const Vec3& b, const Vec3& c, PreparedFacet& f
     } else {
       f.ex[k] = f.ey[k] = f.slope[k] = 0;
     }
+    f.slope_norm[k] = std::sqrt(1 + f.slope[k] * f.slope[k]);
   }
   return true;
 }
@@ -59,22 +61,24 @@ namespace {
 
 inline double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
-// Point-in-triangle in the xy projection, boundary included.
-inline bool inside_xy(const PreparedFacet& f, double x, double y) {
+// Which edge lines of the triangle (xy projection) have (x, y) strictly on their outer
+// side: bit k for edge p[k] -> p[k+1]. Zero means inside, boundary included.
+inline unsigned outside_edges_xy(const PreparedFacet& f, double x, double y) {
   const double d0 = cross2(f.p[1].x() - f.p[0].x(), f.p[1].y() - f.p[0].y(), x - f.p[0].x(),
                            y - f.p[0].y());
   const double d1 = cross2(f.p[2].x() - f.p[1].x(), f.p[2].y() - f.p[1].y(), x - f.p[1].x(),
                            y - f.p[1].y());
   const double d2 = cross2(f.p[0].x() - f.p[2].x(), f.p[0].y() - f.p[2].y(), x - f.p[2].x(),
                            y - f.p[2].y());
-  return (d0 >= 0 && d1 >= 0 && d2 >= 0) || (d0 <= 0 && d1 <= 0 && d2 <= 0);
+  const double s = f.xy_winding;
+  return (s * d0 < 0 ? 1u : 0u) | (s * d1 < 0 ? 2u : 0u) | (s * d2 < 0 ? 4u : 0u);
 }
 
 // Tangent contact with the facet's plane. Always computes the tip height at which the
 // cutter touches the infinite plane (an upper bound for every contact with the facet);
-// returns whether the tangent point lies inside the triangle.
-inline bool plane_contact(const Cutter& c, const PreparedFacet& f, double x, double y,
-                          double& tip, double& ccx, double& ccy) {
+// returns the edges whose lines have the tangent point outside (0: the point is inside).
+inline unsigned plane_contact(const Cutter& c, const PreparedFacet& f, double x, double y,
+                              double& tip, double& ccx, double& ccy) {
   const double r = c.corner_radius, a = c.radius - c.corner_radius;
   const double nx = f.n.x(), ny = f.n.y(), nz = f.n.z();
   const double nxy = std::sqrt(nx * nx + ny * ny);
@@ -87,7 +91,7 @@ inline bool plane_contact(const Cutter& c, const PreparedFacet& f, double x, dou
   }
   const double ccz = (f.plane_d - nx * ccx - ny * ccy) / nz;
   tip = ccz + r * nz - r;
-  return inside_xy(f, ccx, ccy);
+  return outside_edges_xy(f, ccx, ccy);
 }
 
 // Solves tan(psi) * sqrt(1 - d^2 / rho^2) = m for psi, rho = a + r sin(psi), m >= 0:
@@ -122,12 +126,18 @@ double bull_edge_angle(double a, double r, double d, double m) {
 // Edge contact in the edge's horizontal frame: p is the start vertex, (ex, ey) the unit
 // horizontal direction, len its horizontal length, m the slope dz/du. Only contacts at
 // interior points of the edge count (the vertices are tested on their own).
+// `k` is sqrt(1 + m^2). Contacts whose tip cannot exceed `above` are dismissed before any
+// square root: on the whole line the tip is at most z(u0) plus the cutter's rise on a
+// slope m, the tilted-plane height g(m) (ball R(k-1), flat |m|R, bull |m|a + r(k-1)).
 inline bool edge_contact(const Cutter& c, const Vec3& p, double ex, double ey, double len,
-                         double m, double x, double y, double& tip, Vec3& cc) {
+                         double m, double k, double x, double y, double above, double& tip,
+                         Vec3& cc) {
   if (!(len > 0)) return false;
   const double R = c.radius;
   const double dx = x - p.x(), dy = y - p.y();
   const double u0 = dx * ex + dy * ey;
+  const double rise = std::abs(m) * (R - c.corner_radius) + c.corner_radius * (k - 1);
+  if (p.z() + m * u0 + rise <= above) return false;
   const double d = std::abs(dx * ey - dy * ex);
   if (d > R) return false;
   const double s = std::sqrt(R * R - d * d);
@@ -135,7 +145,6 @@ inline bool edge_contact(const Cutter& c, const Vec3& p, double ex, double ey, d
   double u;
   switch (c.type) {
     case CutterType::kBall: {
-      const double k = std::sqrt(1 + m * m);
       u = u0 + s * m / k;
       if (!(u > 0 && u < len)) return false;
       tip = p.z() + m * u0 + s * k - R;
@@ -176,7 +185,7 @@ bool drop_on_plane(const Cutter& c, const PreparedFacet& f, double x, double y, 
                    Vec3& cc) {
   if (f.vertical) return false;
   double ccx, ccy;
-  if (!plane_contact(c, f, x, y, tip_z, ccx, ccy)) return false;
+  if (plane_contact(c, f, x, y, tip_z, ccx, ccy) != 0) return false;
   cc = Vec3(ccx, ccy, (f.plane_d - f.n.x() * ccx - f.n.y() * ccy) / f.n.z());
   return true;
 }
@@ -186,7 +195,9 @@ bool drop_on_edge(const Cutter& c, const Vec3& p, const Vec3& q, double x, doubl
   const double dx = q.x() - p.x(), dy = q.y() - p.y();
   const double l = std::hypot(dx, dy);
   if (!(l > 0)) return false;
-  return edge_contact(c, p, dx / l, dy / l, l, (q.z() - p.z()) / l, x, y, tip_z, cc);
+  const double m = (q.z() - p.z()) / l;
+  return edge_contact(c, p, dx / l, dy / l, l, m, std::sqrt(1 + m * m), x, y,
+                      -std::numeric_limits<double>::infinity(), tip_z, cc);
 }
 
 bool drop_on_vertex(const Cutter& c, const Vec3& v, double x, double y, double& tip_z) {
@@ -198,12 +209,18 @@ bool drop_facet(const Cutter& c, const PreparedFacet& f, double x, double y,
   const double R = c.radius;
   if (x < f.min_x - R || x > f.max_x + R || y < f.min_y - R || y > f.max_y + R) return false;
   if (f.max_z <= best.tip_z) return false;  // every contact's tip is at or below max_z
+  // Edges (bit k) and vertices to examine. When the plane's tangent point T is outside the
+  // triangle, the facet's highest contact is where the largest superlevel set of the
+  // (concave) contact height first meets the triangle; its supporting line there separates
+  // T from the triangle, so it lies on an edge whose line has T outside, or at a vertex of
+  // such an edge. The other edges cannot hold it.
+  unsigned edges = 7u;
   if (!f.vertical) {
     double tip, ccx, ccy;
-    const bool inside = plane_contact(c, f, x, y, tip, ccx, ccy);
+    edges = plane_contact(c, f, x, y, tip, ccx, ccy);
     // The plane contact bounds every contact with the facet from above.
     if (tip <= best.tip_z) return false;
-    if (inside) {
+    if (edges == 0) {
       best.tip_z = tip;
       best.cc = Vec3(ccx, ccy, (f.plane_d - f.n.x() * ccx - f.n.y() * ccy) / f.n.z());
       best.kind = ContactKind::kFacet;
@@ -215,17 +232,21 @@ bool drop_facet(const Cutter& c, const PreparedFacet& f, double x, double y,
   // most of them without the square roots.
   bool raised = false;
   for (int k = 0; k < 3; ++k) {
+    if (!(edges & (1u << k))) continue;
     const Vec3& p = f.p[k];
     if (std::max(p.z(), f.p[(k + 1) % 3].z()) <= best.tip_z) continue;
     double tip;
     Vec3 cc;
-    if (edge_contact(c, p, f.ex[k], f.ey[k], f.len_xy[k], f.slope[k], x, y, tip, cc) &&
+    if (edge_contact(c, p, f.ex[k], f.ey[k], f.len_xy[k], f.slope[k], f.slope_norm[k], x, y,
+                     best.tip_z, tip, cc) &&
         tip > best.tip_z) {
       best = {tip, cc, ContactKind::kEdge, facet_index};
       raised = true;
     }
   }
   for (int k = 0; k < 3; ++k) {
+    // Vertex k ends edge k-1 and starts edge k.
+    if (!(edges & ((1u << k) | (1u << ((k + 2) % 3))))) continue;
     double tip;
     if (f.p[k].z() > best.tip_z && vertex_contact(c, f.p[k], x, y, tip) && tip > best.tip_z) {
       best = {tip, f.p[k], ContactKind::kVertex, facet_index};

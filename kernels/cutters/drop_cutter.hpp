@@ -36,9 +36,11 @@ struct PreparedFacet {
   Vec3 n;             // unit normal oriented so that n.z >= 0
   double plane_d;     // n . p[0]
   double min_x, max_x, min_y, max_y, min_z, max_z;  // bounding box, mm
-  // Edge k runs p[k] -> p[(k+1)%3]. Horizontal unit direction, horizontal length and
-  // slope dz/du; len_xy == 0 marks a vertical edge (its vertices carry its contacts).
-  double ex[3], ey[3], len_xy[3], slope[3];
+  // Edge k runs p[k] -> p[(k+1)%3]. Horizontal unit direction, horizontal length, slope
+  // dz/du and sqrt(1 + slope^2); len_xy == 0 marks a vertical edge (its vertices carry its
+  // contacts).
+  double ex[3], ey[3], len_xy[3], slope[3], slope_norm[3];
+  double xy_winding;  // +1 when p[0], p[1], p[2] run counter-clockwise in xy, else -1
   bool vertical;      // |n.z| < tol::kVerticalNormalZ: no facet contact
 };
 
