@@ -127,8 +127,9 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
       std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(strip_h / p.interval + 1e-9)));
   const double bin_w = p.bin_width > 0 ? p.bin_width : std::max(p.step, 0.5 * R);
   const std::size_t strips = (n_lines + lines_per_strip - 1) / lines_per_strip;
-  const StripBuckets buckets = bucket_facets_by_strip(
-      table, R, v0, static_cast<double>(lines_per_strip) * p.interval, strips);
+  const ClusteredFacets clustered = cluster_facets(table, cutter);
+  const StripBuckets buckets = bucket_clusters_by_strip(
+      clustered, R, v0, static_cast<double>(lines_per_strip) * p.interval, strips);
   st.index_s = index_clock.seconds();
 
   const double min_step = p.min_step > 0 ? p.min_step : p.step / 64;
@@ -138,8 +139,8 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
   auto run_strip = [&](std::size_t s, StripOutput& out) {
     StripBins bins;
     const std::uint32_t* ids = buckets.ids.data() + buckets.offsets[s];
-    bins.rebuild(table, cutter, ids, buckets.offsets[s + 1] - buckets.offsets[s], u0, u_last,
-                 bin_w);
+    bins.rebuild(table, clustered, cutter, ids, buckets.offsets[s + 1] - buckets.offsets[s], u0,
+                 u_last, bin_w);
     const LineSampler sampler{table, cutter, bins, st.floor_z, p.adaptive_tolerance, min_step};
     ClChunk& ch = out.chunk;
     std::vector<Sample> line;

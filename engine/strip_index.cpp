@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
 #include "engine/parallel.hpp"
@@ -25,46 +24,62 @@ inline bool cell_range(double a, double b, double origin, double size, std::size
   return true;
 }
 
+// A bound within this of the best tip counts as not above it (mm). Bounds are evaluated
+// differently from the kernel, so at exact ties (coplanar neighbours of the contact facet,
+// which share its plane) rounding decides; dismissing them costs at most this much height,
+// far below the 1e-9 mm exactness contract, and saves the kernel calls.
+constexpr double kTieTolerance = 1e-12;
+
+// True when nothing in the xy box [x_lo, x_hi] x [y_lo, y_hi] with top `top` can put the
+// tool tip above `best`: it is out of reach, or its top lowered by the cutter's rise at
+// the box's nearest horizontal distance is not above best.
+inline bool box_cannot_beat(const Cutter& c, double x, double y, double x_lo, double x_hi,
+                            double y_lo, double y_hi, double top, double best) {
+  const double dx = std::max({0.0, x_lo - x, x - x_hi});
+  const double dy = std::max({0.0, y_lo - y, y - y_hi});
+  const double rho2 = dx * dx + dy * dy;
+  return rho2 > c.radius * c.radius || profile_height_at_least(c, rho2, top - best - kTieTolerance);
+}
+
 }  // namespace
 
-StripBuckets bucket_facets_by_strip(const FacetTable& table, double radius, double y0,
-                                    double height, std::size_t strips) {
+StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double radius,
+                                      double y0, double height, std::size_t strips) {
   StripBuckets b;
   b.y0 = y0;
   b.height = height;
   b.offsets.assign(strips + 1, 0);
-  const std::size_t n = table.facets.size();
-  // Facets highest-top first (ties by id): filling strips, and then bins, in this order
-  // leaves every list sorted for the walk in StripBins::drop without any further sort.
+  const std::vector<ClusterBound>& cl = clustered.clusters;
+  const std::size_t n = cl.size();
+  // Highest top first (ties by id): filling strips, and then bins, in this order leaves
+  // every list sorted for the walk in StripBins::drop without any further sort.
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const double za = table.facets[a].max_z, zb = table.facets[b].max_z;
-    return za > zb || (za == zb && a < b);
+  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t c) {
+    return cl[a].top_z > cl[c].top_z || (cl[a].top_z == cl[c].top_z && a < c);
   });
   std::vector<std::uint32_t> lo(n), hi(n);
   std::vector<std::uint8_t> hit(n);
-  // Count.
-  for (std::size_t i = 0; i < n; ++i) {
-    const PreparedFacet& f = table.facets[i];
-    hit[i] = cell_range(f.min_y - radius, f.max_y + radius, y0, height, strips, lo[i], hi[i]);
+  for (std::size_t i = 0; i < n; ++i) {  // count
+    hit[i] = cell_range(cl[i].y_lo - radius, cl[i].y_hi + radius, y0, height, strips, lo[i],
+                        hi[i]);
     if (hit[i])
       for (std::uint32_t s = lo[i]; s <= hi[i]; ++s) ++b.offsets[s + 1];
   }
-  // Scan.
-  for (std::size_t s = 0; s < strips; ++s) b.offsets[s + 1] += b.offsets[s];
-  // Fill, highest top first.
+  for (std::size_t s = 0; s < strips; ++s) b.offsets[s + 1] += b.offsets[s];  // scan
   b.ids.resize(b.offsets[strips]);
   std::vector<std::uint32_t> cursor(b.offsets.begin(), b.offsets.end() - 1);
-  for (const std::uint32_t i : order)
+  for (const std::uint32_t i : order)  // fill
     if (hit[i])
       for (std::uint32_t s = lo[i]; s <= hi[i]; ++s) b.ids[cursor[s]++] = i;
   return b;
 }
 
-void StripBins::rebuild(const FacetTable& table, const Cutter& cutter, const std::uint32_t* ids,
-                        std::size_t count, double x0, double x1, double bin_width) {
+void StripBins::rebuild(const FacetTable& table, const ClusteredFacets& clustered,
+                        const Cutter& cutter, const std::uint32_t* ids, std::size_t count,
+                        double x0, double x1, double bin_width) {
   table_ = &table;
+  clustered_ = &clustered;
   cutter_ = cutter;
   x0_ = x0;
   inv_width_ = 1.0 / bin_width;
@@ -74,57 +89,44 @@ void StripBins::rebuild(const FacetTable& table, const Cutter& cutter, const std
   offsets_.assign(bins + 1, 0);
   lo_.resize(count);
   hi_.resize(count);
-  for (std::size_t k = 0; k < count; ++k) {
-    const PreparedFacet& f = table.facets[ids[k]];
-    if (!cell_range(f.min_x - R, f.max_x + R, x0, bin_width, bins, lo_[k], hi_[k])) {
+  for (std::size_t k = 0; k < count; ++k) {  // count
+    const ClusterBound& c = clustered.clusters[ids[k]];
+    if (!cell_range(c.x_lo - R, c.x_hi + R, x0, bin_width, bins, lo_[k], hi_[k])) {
       lo_[k] = 1;
       hi_[k] = 0;  // empty range
       continue;
     }
-    for (std::uint32_t c = lo_[k]; c <= hi_[k]; ++c) ++offsets_[c + 1];
+    for (std::uint32_t b = lo_[k]; b <= hi_[k]; ++b) ++offsets_[b + 1];
   }
-  for (std::size_t c = 0; c < bins; ++c) offsets_[c + 1] += offsets_[c];
+  for (std::size_t b = 0; b < bins; ++b) offsets_[b + 1] += offsets_[b];  // scan
   entries_.resize(offsets_[bins]);
   cursor_.assign(offsets_.begin(), offsets_.end() - 1);
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::uint32_t l = lo_[k], h = hi_[k];
-    if (l > h) continue;
-    const Entry e = make_entry(table.facets[ids[k]], cutter, ids[k]);
-    for (std::uint32_t c = l; c <= h; ++c) entries_[cursor_[c]++] = e;
-  }
-}
-
-StripBins::Entry StripBins::make_entry(const PreparedFacet& f, const Cutter& c,
-                                       std::uint32_t id) {
-  const double R = c.radius, r = c.corner_radius, a = R - r;
-  Entry e{f.max_z, f.min_x - R, f.max_x + R, f.min_y - R, f.max_y + R, 0, 0, 0, id};
-  if (f.vertical) {
-    e.plane_c = std::numeric_limits<double>::infinity();  // no plane bound
-  } else {
-    // Same tangent point as the kernel: (x, y) - (a / |n_xy| + r) n_xy.
-    const double nx = f.n.x(), ny = f.n.y(), nz = f.n.z();
-    const double nxy = std::sqrt(nx * nx + ny * ny);
-    e.plane_a = -nx / nz;
-    e.plane_b = -ny / nz;
-    e.plane_c = (f.plane_d + a * nxy + r * nxy * nxy) / nz + r * nz - r;
-  }
-  return e;
+  for (std::size_t k = 0; k < count; ++k)  // fill, keeping the highest-top-first order
+    for (std::uint32_t b = lo_[k]; b <= hi_[k] && lo_[k] <= hi_[k]; ++b)
+      entries_[cursor_[b]++] = clustered.clusters[ids[k]];
 }
 
 CutterContact StripBins::drop(double x, double y, CutterContact best) const {
   const double fc = std::floor((x - x0_) * inv_width_);
   const std::size_t bins = offsets_.size() - 1;
-  const std::size_t c =
+  const std::size_t bin =
       static_cast<std::size_t>(std::clamp(fc, 0.0, static_cast<double>(bins - 1)));
-  const Entry* e = entries_.data() + offsets_[c];
-  const Entry* end = entries_.data() + offsets_[c + 1];
-  // Rounding slack of the linear plane bound (it is evaluated differently from the
-  // kernel's): far below the 1e-9 mm exactness contract.
-  constexpr double kBoundSlack = 1e-10;
+  const ClusterBound* e = entries_.data() + offsets_[bin];
+  const ClusterBound* end = entries_.data() + offsets_[bin + 1];
+  const FacetBound* facets = clustered_->facets.data();
   for (; e != end && e->top_z > best.tip_z; ++e) {
-    if (x < e->x_lo || x > e->x_hi || y < e->y_lo || y > e->y_hi) continue;
-    if (e->plane_a * x + e->plane_b * y + e->plane_c + kBoundSlack <= best.tip_z) continue;
-    drop_facet(cutter_, table_->facets[e->facet], x, y, e->facet, best);
+    if (box_cannot_beat(cutter_, x, y, e->x_lo, e->x_hi, e->y_lo, e->y_hi, e->top_z,
+                        best.tip_z))
+      continue;
+    const FacetBound* f = facets + e->first;
+    const FacetBound* f_end = f + e->count;
+    for (; f != f_end && f->top_z > best.tip_z; ++f) {  // highest top first
+      if (box_cannot_beat(cutter_, x, y, f->x_lo, f->x_hi, f->y_lo, f->y_hi, f->top_z,
+                          best.tip_z))
+        continue;
+      if (f->plane_a * x + f->plane_b * y + f->plane_c <= best.tip_z + kTieTolerance) continue;
+      drop_facet(cutter_, table_->facets[f->facet], x, y, f->facet, best);
+    }
   }
   return best;
 }

@@ -1,6 +1,7 @@
 #include "batch/jobs/job_runner.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 
 #include "batch/io/mesh_reader.hpp"
@@ -112,6 +113,14 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
 
 std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& obs) {
   par::ThreadLimit limit(batch.threads);
+  // The output's folder is created if needed (a batch file may name out/run.h5).
+  if (const auto dir = batch.output.parent_path(); !dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+      throw std::runtime_error(dir.string() + ": cannot create the output folder: " +
+                               ec.message());
+  }
   out::ClFile file(batch.output, NCPATH_VERSION);
   std::vector<JobOutcome> outcomes;
   for (std::size_t i = 0; i < batch.jobs.size(); ++i) {

@@ -159,7 +159,7 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     k.fail("operation", "must be \"raster\" or \"drop\", got \"" + op + "\"");
   std::string input;
   if (k.string("input", input))
-    job.input = base / input;
+    job.input = (base / input).lexically_normal();
   else
     k.fail("input", "is required (a mesh file: STL or OFF)");
   if (k.string("tool", job.tool_text)) {
@@ -186,7 +186,7 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       parse_raster_params(pk, job.raster);
     } else {
       std::string pts;
-      if (pk.string("points", pts)) job.points = base / pts;
+      if (pk.string("points", pts)) job.points = (base / pts).lexically_normal();
     }
     pk.finish();
     if (pk.error.empty() && job.operation == Operation::kRaster)
@@ -219,7 +219,7 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
   BatchSpec b;
   Keys k(root, "");
   std::string out;
-  if (k.string("output", out)) b.output = base_dir / out;
+  if (k.string("output", out)) b.output = (base_dir / out).lexically_normal();
   double threads;
   if (k.number("threads", threads)) {
     if (threads >= 0 && threads == static_cast<int>(threads))

@@ -40,6 +40,19 @@ inline double profile_height(const Cutter& c, double rho) {
   return r - std::sqrt(std::max(0.0, r * r - t * t));
 }
 
+// profile_height(rho) >= delta, from rho^2, without a square root for ball and flat
+// cutters. Used to dismiss geometry whose top, lowered by the cutter's rise at its nearest
+// horizontal distance, cannot beat the best tip so far.
+inline bool profile_height_at_least(const Cutter& c, double rho2, double delta) {
+  const double r = c.corner_radius, a = c.radius - c.corner_radius;
+  if (delta <= 0) return true;
+  if (delta > r) return false;               // the profile never rises more than r
+  const double k2 = delta * (2 * r - delta);  // (rho - a)^2 at which h reaches delta
+  if (a == 0) return rho2 >= k2;
+  const double k = a + std::sqrt(k2);
+  return rho2 >= k * k;
+}
+
 const char* cutter_type_name(CutterType type);  // "ball", "flat", "bullnose"
 
 }  // namespace ncpath
