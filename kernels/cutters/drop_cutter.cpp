@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -94,33 +93,41 @@ inline unsigned plane_contact(const Cutter& c, const PreparedFacet& f, double x,
   return outside_edges_xy(f, ccx, ccy);
 }
 
-// Solves tan(psi) * sqrt(1 - d^2 / rho^2) = m for psi, rho = a + r sin(psi), m >= 0:
-// the torus angle at which a bull-nose touches a line of slope m at horizontal distance d.
-double bull_edge_angle(double a, double r, double d, double m) {
-  double lo = d <= a ? 0.0 : std::asin(std::min(1.0, (d - a) / r));
-  if (m <= 0) return lo;
-  double hi = std::numbers::pi / 2;
-  lo = std::max(lo, std::atan(m));  // G(psi) <= tan(psi), so the root is above atan(m)
-  double psi = lo;
+// The torus angle psi at which a bull-nose (flat radius a, corner radius r) touches a line
+// of slope m >= 0 at horizontal distance d from the axis: tan(psi) sqrt(1 - d^2/rho^2) = m,
+// rho = a + r sin(psi). Returns s = sin(psi). Squared and multiplied out, the condition is
+// the quartic H(s) = (1 + m^2) s^2 rho^2 - s^2 d^2 - m^2 rho^2 = 0, which has exactly one
+// root between s_lo (rho = max(a, d)) and 1 (H <= 0 there and H(1) = R^2 - d^2 >= 0, and
+// H has the sign of the increasing tan(psi) sqrt(...) - m). Newton with a bisection
+// safeguard, no trigonometry.
+double bull_edge_sine(double a, double r, double d, double m) {
+  const double s_lo = d <= a ? 0.0 : std::min(1.0, (d - a) / r);
+  if (m <= 0) return s_lo;
+  const double m2 = m * m, k2 = 1 + m2, d2 = d * d;
+  auto H = [&](double s, double& dH) {
+    const double rho = a + r * s, rho2 = rho * rho;
+    dH = 2 * k2 * s * rho2 + 2 * k2 * s * s * rho * r - 2 * s * d2 - 2 * m2 * rho * r;
+    return k2 * s * s * rho2 - s * s * d2 - m2 * rho2;
+  };
+  double lo = std::max(s_lo, m / std::sqrt(k2));  // the root when d = 0; d > 0 moves it up
+  double hi = 1.0;
+  double s = lo;
   for (int it = 0; it < 100; ++it) {
-    const double s = std::sin(psi), co = std::cos(psi);
-    const double rho = a + r * s;
-    const double q = 1.0 - (d * d) / (rho * rho);
-    const double sq = std::sqrt(std::max(0.0, q));
-    const double t = s / co;
-    const double g = t * sq - m;
-    if (g > 0)
-      hi = psi;
+    double dH;
+    const double h = H(s, dH);
+    if (h > 0)
+      hi = s;
     else
-      lo = psi;
-    double gp = sq / (co * co);
-    if (sq > 0) gp += t * d * d * r * co / (rho * rho * rho * sq);
-    double next = psi - g / gp;
+      lo = s;
+    double next = dH > 0 ? s - h / dH : 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - psi) <= 1e-15 * (1 + psi) || hi - lo <= 1e-15) return next;
-    psi = next;
+    // Newton converges quadratically, so a step of 1e-13 leaves an error near 1e-26 in s;
+    // the tip, at a maximum along the edge, is second-order in it: far below
+    // tol::kContactSolve.
+    if (std::abs(next - s) <= 1e-13 || hi - lo <= 1e-15) return next;
+    s = next;
   }
-  return psi;
+  return s;
 }
 
 // Edge contact in the edge's horizontal frame: p is the start vertex, (ex, ey) the unit
@@ -158,12 +165,12 @@ inline bool edge_contact(const Cutter& c, const Vec3& p, double ex, double ey, d
     }
     default: {
       const double r = c.corner_radius, a = R - r;
-      const double psi = bull_edge_angle(a, r, d, std::abs(m));
-      const double rho = a + r * std::sin(psi);
+      const double sn = bull_edge_sine(a, r, d, std::abs(m));
+      const double rho = a + r * sn;
       const double du = std::sqrt(std::max(0.0, rho * rho - d * d));
       u = m >= 0 ? u0 + du : u0 - du;
       if (!(u > 0 && u < len)) return false;
-      tip = p.z() + m * u - r * (1 - std::cos(psi));
+      tip = p.z() + m * u - r * (1 - std::sqrt(std::max(0.0, 1 - sn * sn)));
       break;
     }
   }

@@ -7,7 +7,7 @@
 //   edge   - the cutter touches the interior of an edge;
 //   vertex - the cutter touches a vertex.
 // Ball and flat are closed form; the bull-nose edge contact is solved by safeguarded
-// Newton in the torus angle to tol::kContactSolve.
+// Newton (on a quartic in the sine of the torus angle) to tol::kContactSolve.
 //
 // A triangle counts as two-sided (orientation is irrelevant to a tool from above).
 #include <cstdint>

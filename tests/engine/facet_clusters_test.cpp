@@ -26,7 +26,9 @@ TEST(FacetClusters, EveryFacetOnceAndBoxesContainTheirFacets) {
       EXPECT_LE(f.x_hi, cb.x_hi);
       EXPECT_GE(f.y_lo, cb.y_lo);
       EXPECT_LE(f.y_hi, cb.y_hi);
-      if (k > cb.first) EXPECT_GE(c.facets[k - 1].top_z, f.top_z);  // highest first
+      if (k > cb.first) {
+        EXPECT_GE(c.facets[k - 1].top_z, f.top_z);  // highest first
+      }
     }
   }
   for (int s : seen) EXPECT_EQ(s, 1);
