@@ -12,6 +12,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
+#include <tbb/task_group.h>
 #include <tbb/task_arena.h>
 
 namespace ncpath::par {
@@ -54,6 +55,27 @@ void for_each(std::size_t n, std::size_t grain, Body&& body) {
   for_ranges(n, grain, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) body(i);
   });
+}
+
+// Runs background() on the workers while the calling thread runs foreground(), and
+// returns when both are done (exceptions from either are rethrown). With one thread:
+// background() first, then foreground(), on the calling thread.
+template <class Background, class Foreground>
+void overlap(Background&& background, Foreground&& foreground) {
+  if (max_threads() <= 1) {
+    background();
+    foreground();
+    return;
+  }
+  tbb::task_group group;
+  group.run([&] { background(); });
+  try {
+    foreground();
+  } catch (...) {
+    group.wait();  // background() refers to the caller's locals: let it finish first
+    throw;
+  }
+  group.wait();
 }
 
 // Sorts [first, last) by `less`, which must be a strict total order (break ties!) so that

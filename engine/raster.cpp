@@ -187,12 +187,12 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
     }
   };
 
+  // Chunks of whole strips. While the calling thread hands chunk k to the sink (the HDF5
+  // writer, which must stay on one thread), the workers compute chunk k+1; the sink still
+  // sees the chunks in order, so the output does not depend on the thread count.
   const std::size_t strips_per_chunk = std::max<std::size_t>(1, p.chunk_lines / lines_per_strip);
   std::vector<StripOutput> outs;
-  ClChunk merged;
-  Stopwatch total;
-  for (std::size_t c0 = 0; c0 < strips; c0 += strips_per_chunk) {
-    if (control.cancel.load()) throw Cancelled{};
+  auto compute_chunk = [&](std::size_t c0, ClChunk& merged) {
     const std::size_t c1 = std::min(strips, c0 + strips_per_chunk);
     outs.assign(c1 - c0, StripOutput{});
     par::for_each(c1 - c0, 1, [&](std::size_t k) { run_strip(c0 + k, outs[k]); });
@@ -209,12 +209,34 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
       st.adaptive_points += o.adaptive;
       st.floor_points += o.floor;
     }
-    Stopwatch sink_clock;
-    sink(merged);
-    st.sink_s += sink_clock.seconds();
-    if (control.progress) control.progress(std::min(n_lines, c1 * lines_per_strip), n_lines);
+  };
+  ClChunk ready, next;
+  {
+    Stopwatch clock;
+    compute_chunk(0, ready);
+    st.compute_s += clock.seconds();
   }
-  st.compute_s = total.seconds() - st.sink_s;
+  for (std::size_t c0 = 0; c0 < strips; c0 += strips_per_chunk) {
+    if (control.cancel.load()) throw Cancelled{};
+    const std::size_t n0 = c0 + strips_per_chunk;
+    double background_s = 0, sink_s = 0;
+    par::overlap(
+        [&] {
+          if (n0 >= strips) return;
+          Stopwatch clock;
+          compute_chunk(n0, next);
+          background_s = clock.seconds();
+        },
+        [&] {
+          Stopwatch clock;
+          sink(ready);
+          sink_s = clock.seconds();
+        });
+    st.compute_s += background_s;
+    st.sink_s += sink_s;
+    std::swap(ready, next);
+    if (control.progress) control.progress(std::min(n_lines, n0 * lines_per_strip), n_lines);
+  }
   return st;
 }
 

@@ -55,8 +55,8 @@ struct RasterStats {
   double floor_z = 0;                 // mm
   std::array<double, 4> rect{};       // the rectangle actually scanned
   double index_s = 0;                 // facet table + strip buckets
-  double compute_s = 0;               // drop-cutting (excludes time spent in sink)
-  double sink_s = 0;                  // time spent in sink (writing)
+  double compute_s = 0;               // drop-cutting (wall time of the chunk computations)
+  double sink_s = 0;                  // time spent in sink (writing), overlapped with compute
 };
 
 // Throws Cancelled if control.cancel is set; std::invalid_argument for bad params.
