@@ -16,6 +16,12 @@ struct ClChunk {
   std::vector<std::uint8_t> path_kinds;   // 1 per path: PathKind
 
   std::size_t point_count() const { return contact.size(); }
+  void append(const ClChunk& other) {
+    xyz.insert(xyz.end(), other.xyz.begin(), other.xyz.end());
+    contact.insert(contact.end(), other.contact.begin(), other.contact.end());
+    path_sizes.insert(path_sizes.end(), other.path_sizes.begin(), other.path_sizes.end());
+    path_kinds.insert(path_kinds.end(), other.path_kinds.begin(), other.path_kinds.end());
+  }
   void clear() {
     xyz.clear();
     contact.clear();

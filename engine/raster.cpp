@@ -198,12 +198,7 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
     par::for_each(c1 - c0, 1, [&](std::size_t k) { run_strip(c0 + k, outs[k]); });
     merged.clear();
     for (StripOutput& o : outs) {
-      merged.xyz.insert(merged.xyz.end(), o.chunk.xyz.begin(), o.chunk.xyz.end());
-      merged.contact.insert(merged.contact.end(), o.chunk.contact.begin(), o.chunk.contact.end());
-      merged.path_sizes.insert(merged.path_sizes.end(), o.chunk.path_sizes.begin(),
-                               o.chunk.path_sizes.end());
-      merged.path_kinds.insert(merged.path_kinds.end(), o.chunk.path_kinds.begin(),
-                               o.chunk.path_kinds.end());
+      merged.append(o.chunk);
       st.cut_points += o.cut;
       st.link_points += o.link;
       st.adaptive_points += o.adaptive;

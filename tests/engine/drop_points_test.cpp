@@ -18,11 +18,7 @@ TEST(DropPoints, SameOrderAndMissesAreFlaggedNotInvented) {
   RunControl control;
   const DropPointsStats st = run_drop_points(
       mesh, ball_cutter(2), xy, paths,
-      [&](const ClChunk& c) {
-        got.xyz.insert(got.xyz.end(), c.xyz.begin(), c.xyz.end());
-        got.contact.insert(got.contact.end(), c.contact.begin(), c.contact.end());
-        got.path_sizes.insert(got.path_sizes.end(), c.path_sizes.begin(), c.path_sizes.end());
-      },
+      [&](const ClChunk& c) { got.append(c); },
       control);
   EXPECT_EQ(st.points, 5u);
   EXPECT_EQ(st.no_contact, 2u);

@@ -25,12 +25,7 @@ RasterStats run(const TriangleMesh& mesh, const Cutter& c, const RasterParams& p
       mesh, c, p,
       [&](const ClChunk& ch) {
         ++out.chunks;
-        out.all.xyz.insert(out.all.xyz.end(), ch.xyz.begin(), ch.xyz.end());
-        out.all.contact.insert(out.all.contact.end(), ch.contact.begin(), ch.contact.end());
-        out.all.path_sizes.insert(out.all.path_sizes.end(), ch.path_sizes.begin(),
-                                  ch.path_sizes.end());
-        out.all.path_kinds.insert(out.all.path_kinds.end(), ch.path_kinds.begin(),
-                                  ch.path_kinds.end());
+        out.all.append(ch);
       },
       control);
 }
