@@ -50,11 +50,8 @@ Result run_embree_baseline(const TriangleMesh& mesh, const Cutter& tool, const R
                            double floor_z, const Aabb3& box) {
   const FacetTable table = build_facet_table(mesh);
   const DropIndex index(table, tool);
-  const auto count = [](double extent, double spacing) {
-    return static_cast<std::size_t>(std::floor(extent / spacing + 1e-9)) + 1;
-  };
-  const std::size_t lines = count(box.hi.y() - box.lo.y(), p.interval);
-  const std::size_t samples = count(box.hi.x() - box.lo.x(), p.step);
+  const std::size_t lines = raster_sample_count(box.hi.y() - box.lo.y(), p.interval);
+  const std::size_t samples = raster_sample_count(box.hi.x() - box.lo.x(), p.step);
   std::vector<double> line_sum(lines);
   Stopwatch clock;
   par::for_each(lines, 1, [&](std::size_t i) {

@@ -8,6 +8,7 @@
 #include "engine/facet_table.hpp"
 #include "engine/parallel.hpp"
 #include "engine/strip_index.hpp"
+#include "kernels/geom/tolerance.hpp"
 
 namespace ncpath {
 
@@ -37,6 +38,10 @@ std::string validate(const RasterParams& p) {
   if (os.tellp() == 0 && !(p.strip_height >= 0 && p.bin_width >= 0))
     os << "strip_height and bin_width must be >= 0 (0 = automatic)";
   return os.str();
+}
+
+std::size_t raster_sample_count(double extent, double spacing) {
+  return static_cast<std::size_t>(std::floor(extent / spacing + tol::kCountSlack)) + 1;
 }
 
 namespace {
@@ -113,18 +118,15 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
   }
   st.rect = swap ? std::array<double, 4>{v0, u0, v1, u1} : std::array<double, 4>{u0, v0, u1, v1};
   st.floor_z = p.floor_z.value_or(table.box.lo.z());
-  const auto count = [](double extent, double spacing) {
-    return static_cast<std::size_t>(std::floor(extent / spacing + 1e-9)) + 1;
-  };
-  const std::size_t n_lines = count(v1 - v0, p.interval);
-  const std::size_t n_samples = count(u1 - u0, p.step);
+  const std::size_t n_lines = raster_sample_count(v1 - v0, p.interval);
+  const std::size_t n_samples = raster_sample_count(u1 - u0, p.step);
   const double u_last = u0 + static_cast<double>(n_samples - 1) * p.step;
   st.lines = n_lines;
 
   const double R = cutter.radius;
   const double strip_h = p.strip_height > 0 ? p.strip_height : std::max(p.interval, 0.5 * R);
   const std::size_t lines_per_strip =
-      std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(strip_h / p.interval + 1e-9)));
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(strip_h / p.interval + tol::kCountSlack)));
   const double bin_w = p.bin_width > 0 ? p.bin_width : std::max(p.step, 0.5 * R);
   const std::size_t strips = (n_lines + lines_per_strip - 1) / lines_per_strip;
   const ClusteredFacets clustered = cluster_facets(table, cutter);
@@ -134,7 +136,7 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
 
   const double min_step = p.min_step > 0 ? p.min_step : p.step / 64;
   const std::size_t link_segments =
-      std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(p.interval / p.step - 1e-9)));
+      std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(p.interval / p.step - tol::kCountSlack)));
 
   auto run_strip = [&](std::size_t s, StripOutput& out) {
     StripBins bins;

@@ -41,6 +41,9 @@ struct RasterParams {
   double bin_width = 0;            // mm of x-bins within a strip; 0 = auto
 };
 
+// Samples at origin + k * spacing, k = 0 .. floor(extent / spacing): their count.
+std::size_t raster_sample_count(double extent, double spacing);
+
 // Empty when usable; else a message naming the bad key ("interval must be > 0, got 0").
 std::string validate(const RasterParams& params);
 

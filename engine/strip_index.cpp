@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "engine/parallel.hpp"
+#include "kernels/geom/tolerance.hpp"
 
 namespace ncpath {
 
@@ -15,7 +16,7 @@ namespace {
 // rounding may add a cell, never drop one.
 inline bool cell_range(double a, double b, double origin, double size, std::size_t n,
                        std::uint32_t& lo, std::uint32_t& hi) {
-  const double slack = 1e-9 * (1.0 + std::abs(origin) + std::abs(b));
+  const double slack = tol::kCellSlack * (1.0 + std::abs(origin) + std::abs(b));
   const double fa = std::floor((a - slack - origin) / size);
   const double fb = std::floor((b + slack - origin) / size);
   if (fb < 0 || fa >= static_cast<double>(n)) return false;
@@ -24,11 +25,6 @@ inline bool cell_range(double a, double b, double origin, double size, std::size
   return true;
 }
 
-// A bound within this of the best tip counts as not above it (mm). Bounds are evaluated
-// differently from the kernel, so at exact ties (coplanar neighbours of the contact facet,
-// which share its plane) rounding decides; dismissing them costs at most this much height,
-// far below the 1e-9 mm exactness contract, and saves the kernel calls.
-constexpr double kTieTolerance = 1e-12;
 
 // True when nothing in the xy box [x_lo, x_hi] x [y_lo, y_hi] with top `top` can put the
 // tool tip above `best`: it is out of reach, or its top lowered by the cutter's rise at
@@ -38,7 +34,7 @@ inline bool box_cannot_beat(const Cutter& c, double x, double y, double x_lo, do
   const double dx = std::max({0.0, x_lo - x, x - x_hi});
   const double dy = std::max({0.0, y_lo - y, y - y_hi});
   const double rho2 = dx * dx + dy * dy;
-  return rho2 > c.radius * c.radius || profile_height_at_least(c, rho2, top - best - kTieTolerance);
+  return rho2 > c.radius * c.radius || profile_height_at_least(c, rho2, top - best - tol::kBoundTie);
 }
 
 }  // namespace
@@ -124,7 +120,7 @@ CutterContact StripBins::drop(double x, double y, CutterContact best) const {
       if (box_cannot_beat(cutter_, x, y, f->x_lo, f->x_hi, f->y_lo, f->y_hi, f->top_z,
                           best.tip_z))
         continue;
-      if (f->plane_a * x + f->plane_b * y + f->plane_c <= best.tip_z + kTieTolerance) continue;
+      if (f->plane_a * x + f->plane_b * y + f->plane_c <= best.tip_z + tol::kBoundTie) continue;
       drop_facet(cutter_, table_->facets[f->facet], x, y, f->facet, best);
     }
   }

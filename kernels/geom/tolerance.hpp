@@ -24,9 +24,15 @@ inline constexpr double kVerticalNormalZ = 1e-12;
 // rounding can never drop a candidate that double precision would keep.
 inline constexpr double kFloatBoxPad = 1e-5;
 
-// mm. Default chordal tolerance of adaptive sampling along a scan line: the straight move
-// between two CL points deviates from the sampled CL curve by at most this.
-inline constexpr double kDefaultChordal = 0.01;
+// mm. A culling bound (tangent plane, profile rise) within this of the best tip so far
+// counts as not above it. Bounds are evaluated differently from the kernel, so at exact
+// ties (coplanar neighbours of the contact facet) rounding decides; dismissing them costs
+// at most this much height, far below kExactZ.
+inline constexpr double kBoundTie = 1e-12;
+
+// Dimensionless, relative to the coordinates' magnitude. Slack added when an interval is
+// mapped to grid cells (strips, bins) so that rounding can add a cell, never drop one.
+inline constexpr double kCellSlack = 1e-9;
 
 // Dimensionless, relative to the polygon's size (longest side of its bounding box). A polygon
 // edge shorter than this fraction of the size has zero length: the polygon is rejected as
@@ -38,5 +44,10 @@ inline constexpr double kPolygonZeroEdge = 1e-12;
 // neither a turn of the wrong sign nor the apex of a zero-area fan triangle. Likewise a
 // polygon whose doubled Newell area is below this times size^2 has no plane (degenerate).
 inline constexpr double kPolygonStraightTurn = 1e-12;
+
+// Dimensionless. Added to extent / spacing before rounding down when counting samples, so
+// that an extent which is a multiple of the spacing up to rounding (200 / 0.1) keeps its
+// last sample.
+inline constexpr double kCountSlack = 1e-9;
 
 }  // namespace ncpath::tol
