@@ -45,26 +45,35 @@ TEST(DropIndex, EqualsBruteForceOnRandomSoup) {
   expect_index_matches_brute_force(test::random_soup(3000, 60, 20, 4, 3), 10000, 4);
 }
 
-// Ball on a tessellated hemisphere of radius S: the exact answer for the true sphere is
-// sqrt((S+R)^2 - rho^2) - R; the polyhedron lies inside the sphere and outside the sphere
+// Every cutter on a tessellated hemisphere of radius S. Analytic answer for the true
+// sphere: the cutter is a flat disc of radius a = R - r grown by a ball of radius r, so it
+// touches the sphere grown by r: tip = S when rho <= a, else sqrt((S+r)^2 - (rho-a)^2) - r
+// (ball: a = 0; flat: r = 0). The polyhedron lies inside the sphere and outside the sphere
 // shrunk by its sagitta, so the drop height is bracketed by the two.
-TEST(DropIndex, BallOnHemisphereBracketedByAnalyticSpheres) {
-  const double S = 30, R = 2.5;
+double sphere_tip(double S, const Cutter& c, double rho) {
+  const double r = c.corner_radius, a = c.radius - r;
+  if (rho <= a) return S;
+  return std::sqrt((S + r) * (S + r) - (rho - a) * (rho - a)) - r;
+}
+
+TEST(DropIndex, EveryCutterOnHemisphereBracketedByAnalyticSpheres) {
+  const double S = 30;
   const TriangleMesh mesh = test::hemisphere(S, 60, 240);
   const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, ball_cutter(2 * R));
-  // Sagitta of the coarsest facet: circumradius of the largest triangle bounds it.
-  const double edge = 2 * S * std::sin(M_PI / 240) * 1.0 + S * (M_PI / 2) / 60;
+  // Sagitta of the coarsest facet: its circumradius is at most the sum of a ring chord and
+  // a meridian arc.
+  const double edge = 2 * S * std::sin(M_PI / 240) + S * (M_PI / 2) / 60;
   const double sag = S - std::sqrt(S * S - edge * edge);
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> U(-20, 20);
-  for (int i = 0; i < 5000; ++i) {
-    const double x = U(rng), y = U(rng), rho = std::hypot(x, y);
-    const CutterContact c = index.query(x, y);
-    const double upper = std::sqrt((S + R) * (S + R) - rho * rho) - R;
-    const double lower = std::sqrt((S - sag + R) * (S - sag + R) - rho * rho) - R;
-    EXPECT_LE(c.tip_z, upper + 1e-9);
-    EXPECT_GE(c.tip_z, lower - 1e-9);
+  for (const Cutter& c : {ball_cutter(5), flat_cutter(5), bull_nose_cutter(5, 1)}) {
+    const DropIndex index(table, c);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> U(-20, 20);
+    for (int i = 0; i < 5000; ++i) {
+      const double x = U(rng), y = U(rng), rho = std::hypot(x, y);
+      const CutterContact got = index.query(x, y);
+      EXPECT_LE(got.tip_z, sphere_tip(S, c, rho) + 1e-9) << cutter_type_name(c.type);
+      EXPECT_GE(got.tip_z, sphere_tip(S - sag, c, rho) - 1e-9) << cutter_type_name(c.type);
+    }
   }
 }
 
