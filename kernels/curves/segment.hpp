@@ -51,6 +51,8 @@ double area2_contribution(const Seg2& s);
 double distance(const Seg2& s, const Vec2& p);
 // Axis-aligned box of the segment (exact for arcs: includes the quadrant points crossed).
 void bounds(const Seg2& s, Vec2& lo, Vec2& hi);
+// True when the direction of p as seen from the arc's centre lies within its sweep.
+bool arc_contains_angle(const Seg2& s, const Vec2& p);
 // Reversed segment (b to a, opposite turn).
 Seg2 reversed(const Seg2& s);
 

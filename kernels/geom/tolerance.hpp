@@ -50,4 +50,36 @@ inline constexpr double kPolygonStraightTurn = 1e-12;
 // last sample.
 inline constexpr double kCountSlack = 1e-9;
 
+// mm. Planar offsetting: points closer than this are the same point (intersections,
+// joins, stitching of offset pieces), and a point counts as lying on a segment within it.
+inline constexpr double kOffsetPoint = 1e-9;
+
+// mm. An offset piece is kept when its distance to the curves it was offset from is at
+// least the offset distance minus this. Exact offsets sit at the distance to rounding
+// (~1e-13 mm); anything that comes closer by more than this is cut away.
+inline constexpr double kOffsetValid = 1e-7;
+
+// mm. Default join tolerance of chain_and_nest (kernels/pocket/chain.hpp): curve end points
+// closer than this are the same profile vertex and are snapped together exactly, so that loops
+// chain bitwise. Covers the rounding of coordinates written by CAD systems with ~15 digits.
+inline constexpr double kProfileJoin = 1e-6;
+
+// mm. Documented larger join tolerance for sloppy drawings (ends that miss by a few
+// micrometres, e.g. DXF exported with 4 decimals). Opt-in only: closing a gap this large moves
+// geometry, and chain_and_nest reports the largest gap it closed.
+inline constexpr double kProfileJoinLoose = 1e-2;
+
+// mm. The profile readers (DXF, TOML) drop an input entity whose length is below this (a line
+// with coincident ends, an arc of zero radius or sweep) and count it.
+inline constexpr double kProfileZeroLength = 1e-9;
+
+// mm. Chordal tolerance of the polylines chain_and_nest uses only to test input loops for
+// nesting and self-intersection, and NURBS loops for orientation; the geometry it returns is
+// exact.
+inline constexpr double kProfileTestChord = 1e-3;
+
+// Dimensionless. A DXF entity's unit extrusion direction whose |x| and |y| are below this is
+// +Z or -Z (the drawing plane, possibly mirrored); the DXF reader skips any other direction.
+inline constexpr double kDxfExtrusionAxis = 1e-9;
+
 }  // namespace ncpath::tol

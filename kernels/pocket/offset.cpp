@@ -1,0 +1,381 @@
+#include "kernels/pocket/offset.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "kernels/curves/intersect.hpp"
+#include "kernels/geom/tolerance.hpp"
+
+namespace ncpath {
+
+namespace {
+
+inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+struct RawSeg {
+  Seg2 s;
+  std::uint32_t loop;  // input loop it was offset from
+  std::uint32_t prev, next;  // neighbours in the crude loop (indices into the raw list)
+};
+
+// Joins `prev` (its end) to `next` (its start) around the original vertex v; may trim
+// both, and may append a joining segment to out.
+void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
+  const double eps = tol::kOffsetPoint;
+  if ((prev.b - next.a).norm() <= eps) {
+    next.a = prev.b;
+    return;
+  }
+  const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
+  const double c = cross(te, ts);
+  if (c > 0 || (std::abs(c) <= 1e-15 && te.dot(ts) < 0)) {
+    // Left turn: the material side opens; the true offset is the arc around v.
+    out.push_back(make_arc(prev.b, next.a, v, true, prev.source));
+    out.back().r = (prev.b - v).norm();
+    return;
+  }
+  // Right turn: the offsets overlap; trim both at their intersection nearest to v.
+  SegHit hits[2];
+  const int n = intersect(prev, next, hits, eps);
+  if (n > 0) {
+    int best = 0;
+    if (n == 2 && (hits[1].p - v).norm() < (hits[0].p - v).norm()) best = 1;
+    prev.b = hits[best].p;
+    next.a = hits[best].p;
+    return;
+  }
+  out.push_back(make_line(prev.b, next.a, prev.source));
+}
+
+// The crude offset loop of one input loop, appended to raw.
+void crude_loop(const std::vector<Seg2>& in, double d, std::uint32_t loop_id,
+                std::vector<RawSeg>& raw) {
+  std::vector<Seg2> segs;  // offsets and joins, in order
+  std::vector<Vec2> vertex;  // vertex[k]: the input vertex before offsets[k]
+  std::vector<Seg2> offs;
+  for (const Seg2& s : in) {
+    Seg2 o;
+    if (raw_offset(s, d, o)) {
+      offs.push_back(o);
+      vertex.push_back(s.a);
+    }
+  }
+  if (offs.empty()) return;
+  const std::size_t n = offs.size();
+  // Trim/join each consecutive pair (including last -> first) before emitting, so trims
+  // at both ends of a segment are applied.
+  std::vector<std::vector<Seg2>> joins(n);
+  for (std::size_t k = 0; k < n; ++k) join(offs[k], offs[(k + 1) % n], vertex[(k + 1) % n], joins[k]);
+  // join() of the last pair may have moved offs[0].a; re-snap the first pair's joint.
+  for (std::size_t k = 0; k < n; ++k) {
+    segs.push_back(offs[k]);
+    for (const Seg2& j : joins[k]) segs.push_back(j);
+  }
+  const auto base = static_cast<std::uint32_t>(raw.size());
+  const auto m = static_cast<std::uint32_t>(segs.size());
+  for (std::uint32_t k = 0; k < m; ++k)
+    raw.push_back({segs[k], loop_id, base + (k + m - 1) % m, base + (k + 1) % m});
+}
+
+struct Box {
+  Vec2 lo, hi;
+};
+
+// Uniform grid of segment ids over their boxes (for distance validation).
+class SegGrid {
+ public:
+  SegGrid(const std::vector<Seg2>& segs, double cell) : segs_(segs) {
+    lo_ = Vec2::Constant(1e300);
+    Vec2 hi = Vec2::Constant(-1e300);
+    boxes_.resize(segs.size());
+    for (std::size_t i = 0; i < segs.size(); ++i) {
+      bounds(segs[i], boxes_[i].lo, boxes_[i].hi);
+      lo_ = lo_.cwiseMin(boxes_[i].lo);
+      hi = hi.cwiseMax(boxes_[i].hi);
+    }
+    cell_ = cell;
+    nx_ = std::max(1, std::min(2048, static_cast<int>((hi.x() - lo_.x()) / cell) + 1));
+    ny_ = std::max(1, std::min(2048, static_cast<int>((hi.y() - lo_.y()) / cell) + 1));
+    cell_x_ = (hi.x() - lo_.x()) / nx_ + 1e-12;
+    cell_y_ = (hi.y() - lo_.y()) / ny_ + 1e-12;
+    start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<std::uint32_t> cursor;
+      if (pass == 1) {
+        for (std::size_t c = 0; c + 1 < start_.size(); ++c) start_[c + 1] += start_[c];
+        ids_.resize(start_.back());
+        cursor.assign(start_.begin(), start_.end() - 1);
+      }
+      for (std::size_t i = 0; i < segs.size(); ++i) {
+        int x0, y0, x1, y1;
+        range(boxes_[i].lo, boxes_[i].hi, x0, y0, x1, y1);
+        for (int y = y0; y <= y1; ++y)
+          for (int x = x0; x <= x1; ++x) {
+            const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+            if (pass == 0)
+              ++start_[c + 1];
+            else
+              ids_[cursor[c]++] = static_cast<std::uint32_t>(i);
+          }
+      }
+    }
+    stamp_.assign(segs.size(), 0);
+  }
+
+  // True when some segment comes closer to s than limit.
+  bool any_closer(const Seg2& s, double limit) {
+    Vec2 lo, hi;
+    bounds(s, lo, hi);
+    lo.array() -= limit;
+    hi.array() += limit;
+    int x0, y0, x1, y1;
+    range(lo, hi, x0, y0, x1, y1);
+    ++tick_;
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+        for (std::uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+          const std::uint32_t id = ids_[k];
+          if (stamp_[id] == tick_) continue;
+          stamp_[id] = tick_;
+          const Box& b = boxes_[id];
+          if (b.lo.x() > hi.x() || b.hi.x() < lo.x() || b.lo.y() > hi.y() || b.hi.y() < lo.y())
+            continue;
+          if (distance(s, segs_[id]) < limit) return true;
+        }
+      }
+    return false;
+  }
+
+ private:
+  void range(const Vec2& lo, const Vec2& hi, int& x0, int& y0, int& x1, int& y1) const {
+    x0 = std::clamp(static_cast<int>(std::floor((lo.x() - lo_.x()) / cell_x_)), 0, nx_ - 1);
+    y0 = std::clamp(static_cast<int>(std::floor((lo.y() - lo_.y()) / cell_y_)), 0, ny_ - 1);
+    x1 = std::clamp(static_cast<int>(std::floor((hi.x() - lo_.x()) / cell_x_)), 0, nx_ - 1);
+    y1 = std::clamp(static_cast<int>(std::floor((hi.y() - lo_.y()) / cell_y_)), 0, ny_ - 1);
+  }
+  const std::vector<Seg2>& segs_;
+  std::vector<Box> boxes_;
+  Vec2 lo_;
+  double cell_ = 1, cell_x_ = 1, cell_y_ = 1;
+  int nx_ = 1, ny_ = 1;
+  std::vector<std::uint32_t> start_, ids_, stamp_;
+  std::uint32_t tick_ = 0;
+};
+
+struct SplitPoint {
+  double t;
+  Vec2 p;
+};
+
+}  // namespace
+
+bool raw_offset(const Seg2& s, double d, Seg2& out) {
+  out = s;
+  if (!s.is_arc()) {
+    const Vec2 dir = s.b - s.a;
+    const double l = dir.norm();
+    if (l == 0) return false;
+    const Vec2 right(dir.y() / l, -dir.x() / l);
+    out.a = s.a + d * right;
+    out.b = s.b + d * right;
+    return true;
+  }
+  // Counter-clockwise arcs have their centre on the left: moving right grows the radius.
+  const double r = s.r + (s.kind == SegKind::kArcCcw ? d : -d);
+  if (r <= tol::kOffsetPoint) return false;
+  const Vec2 ua = (s.a - s.c) / (s.a - s.c).norm();
+  const Vec2 ub = (s.b - s.c) / (s.b - s.c).norm();
+  out.a = s.c + r * ua;
+  out.b = s.c + r * ub;
+  out.r = r;
+  return true;
+}
+
+double loop_area2(const std::vector<Seg2>& loop) {
+  double a = 0;
+  for (const Seg2& s : loop) a += area2_contribution(s);
+  return a;
+}
+
+double loop_length(const std::vector<Seg2>& loop) {
+  double l = 0;
+  for (const Seg2& s : loop) l += length(s);
+  return l;
+}
+
+int winding_number(const std::vector<Seg2>& loop, const Vec2& q) {
+  // A horizontal ray to +x; a tiny fixed nudge keeps it off vertices at exactly q.y.
+  const Vec2 p(q.x(), q.y() + 1.2345678e-11);
+  int w = 0;
+  for (const Seg2& s : loop) {
+    if (!s.is_arc()) {
+      if (s.a.y() <= p.y() && s.b.y() > p.y()) {
+        if (cross(s.b - s.a, p - s.a) > 0) ++w;
+      } else if (s.b.y() <= p.y() && s.a.y() > p.y()) {
+        if (cross(s.b - s.a, p - s.a) < 0) --w;
+      }
+      continue;
+    }
+    const double dy = p.y() - s.c.y();
+    if (std::abs(dy) >= s.r) continue;
+    const double dx = std::sqrt(s.r * s.r - dy * dy);
+    for (double x : {s.c.x() - dx, s.c.x() + dx}) {
+      if (x <= p.x()) continue;
+      const Vec2 hit(x, p.y());
+      if (!arc_contains_angle(s, hit)) continue;
+      // Direction of travel in y at the hit: ccw arcs go up on the right of the centre.
+      const double up = (x - s.c.x()) * s.turn();
+      w += up > 0 ? 1 : -1;
+    }
+  }
+  return w;
+}
+
+OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d) {
+  OffsetResult res;
+  const double eps = tol::kOffsetPoint;
+  std::vector<RawSeg> raw;
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    crude_loop(loops[l], d, static_cast<std::uint32_t>(l), raw);
+  res.stats.raw_segments = raw.size();
+  const std::size_t n = raw.size();
+  if (n == 0) return res;
+
+  // Dissection: all intersections, by a sweep over x.
+  std::vector<Box> box(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    bounds(raw[i].s, box[i].lo, box[i].hi);
+    box[i].lo.array() -= eps;
+    box[i].hi.array() += eps;
+  }
+  std::vector<std::uint32_t> order(n);
+  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return box[a].lo.x() < box[b].lo.x() || (box[a].lo.x() == box[b].lo.x() && a < b);
+  });
+  std::vector<std::vector<SplitPoint>> splits(n);
+  std::vector<std::uint32_t> active;
+  for (const std::uint32_t i : order) {
+    std::size_t keep = 0;
+    for (const std::uint32_t j : active)
+      if (box[j].hi.x() >= box[i].lo.x()) active[keep++] = j;
+    active.resize(keep);
+    for (const std::uint32_t j : active) {
+      if (box[j].lo.y() > box[i].hi.y() || box[j].hi.y() < box[i].lo.y()) continue;
+      SegHit hits[2];
+      const int h = intersect(raw[i].s, raw[j].s, hits, eps);
+      for (int k = 0; k < h; ++k) {
+        const Vec2& p = hits[k].p;
+        // The joint shared with a neighbour is not a crossing.
+        if (raw[i].next == j && (p - raw[i].s.b).norm() <= eps) continue;
+        if (raw[i].prev == j && (p - raw[i].s.a).norm() <= eps) continue;
+        splits[i].push_back({hits[k].t0, p});
+        splits[j].push_back({hits[k].t1, p});
+        ++res.stats.intersections;
+      }
+    }
+    active.push_back(i);
+  }
+
+  // Split into pieces.
+  struct Piece {
+    Seg2 s;
+    std::uint32_t loop;
+  };
+  std::vector<Piece> pieces;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Seg2& s = raw[i].s;
+    std::vector<SplitPoint>& sp = splits[i];
+    std::sort(sp.begin(), sp.end(), [](const SplitPoint& a, const SplitPoint& b) { return a.t < b.t; });
+    Vec2 from = s.a;
+    for (const SplitPoint& q : sp) {
+      if ((q.p - from).norm() <= eps || (q.p - s.b).norm() <= eps) continue;
+      pieces.push_back({sub_segment(s, from, q.p), raw[i].loop});
+      from = q.p;
+    }
+    pieces.push_back({sub_segment(s, from, s.b), raw[i].loop});
+  }
+  res.stats.pieces = pieces.size();
+
+  // Validation against the input curves.
+  std::vector<Seg2> input;
+  for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
+  double total = 0;
+  for (const Seg2& s : input) total += length(s);
+  SegGrid grid(input, std::max(d, 4 * total / std::max<std::size_t>(1, input.size())));
+  std::vector<std::uint8_t> keep(pieces.size());
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    if (length(pieces[k].s) <= eps) continue;
+    keep[k] = !grid.any_closer(pieces[k].s, d - tol::kOffsetValid);
+    res.stats.pieces_kept += keep[k];
+  }
+
+  // Regrouping: stitch kept pieces end to end.
+  auto key = [](const Vec2& p) {
+    const double q = 1e-6;  // mm: bucket size for end-point lookup (matches are within eps)
+    return (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.x() / q))) *
+            0x9E3779B97F4A7C15ull) ^
+           static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.y() / q)));
+  };
+  std::unordered_multimap<std::uint64_t, std::uint32_t> starts;
+  for (std::uint32_t k = 0; k < pieces.size(); ++k)
+    if (keep[k]) starts.emplace(key(pieces[k].s.a), k);
+  auto find_next = [&](const Vec2& p, const Vec2& incoming) -> std::int64_t {
+    std::int64_t best = -1;
+    double best_turn = 1e300;
+    const double q = 1e-6;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy) {
+        auto range = starts.equal_range(key(p + Vec2(dx * q, dy * q)));
+        for (auto it = range.first; it != range.second; ++it) {
+          const std::uint32_t k = it->second;
+          if (!keep[k] || (pieces[k].s.a - p).norm() > 10 * eps) continue;
+          const Vec2 t = tangent_at(pieces[k].s, 0);
+          const double turn = std::atan2(cross(incoming, t), incoming.dot(t));
+          if (best < 0 || turn < best_turn) {
+            best = k;
+            best_turn = turn;
+          }
+        }
+      }
+    return best;
+  };
+  for (std::uint32_t k0 = 0; k0 < pieces.size(); ++k0) {
+    if (!keep[k0]) continue;
+    OffsetLoop loop;
+    std::vector<std::uint32_t> used;
+    std::uint32_t k = k0;
+    bool closed = false;
+    for (std::size_t guard = 0; guard <= pieces.size(); ++guard) {
+      keep[k] = 0;
+      used.push_back(k);
+      loop.segs.push_back(pieces[k].s);
+      loop.parents.push_back(pieces[k].loop);
+      const Vec2 end = pieces[k].s.b;
+      if ((end - pieces[k0].s.a).norm() <= 10 * eps) {
+        closed = true;
+        break;
+      }
+      const std::int64_t nk = find_next(end, tangent_at(pieces[k].s, 1));
+      if (nk < 0) break;
+      k = static_cast<std::uint32_t>(nk);
+    }
+    if (!closed) {
+      res.stats.open_fragments += used.size();
+      continue;
+    }
+    // Make the joints exact.
+    for (std::size_t s = 0; s < loop.segs.size(); ++s)
+      loop.segs[(s + 1) % loop.segs.size()].a = loop.segs[s].b;
+    loop.area2 = loop_area2(loop.segs);
+    if (std::abs(loop.area2) <= eps) continue;  // a sliver with no area
+    std::sort(loop.parents.begin(), loop.parents.end());
+    loop.parents.erase(std::unique(loop.parents.begin(), loop.parents.end()), loop.parents.end());
+    res.loops.push_back(std::move(loop));
+  }
+  return res;
+}
+
+}  // namespace ncpath
