@@ -54,6 +54,17 @@ inline constexpr double kCountSlack = 1e-9;
 // joins, stitching of offset pieces), and a point counts as lying on a segment within it.
 inline constexpr double kOffsetPoint = 1e-9;
 
+// mm. Two consecutive offset segments share their joint; a computed crossing of theirs
+// within this of the joint is that joint seen through rounding (near-tangent crossings are
+// ill-conditioned: an error of sqrt(rounding * radius) reaches 1e-7 mm on flat arcs), not
+// a self-intersection.
+inline constexpr double kOffsetJoint = 1e-6;
+
+// mm. Result loops drop segments shorter than this (slivers left between crossings a few
+// micrometres apart, or joins of corners of a few micro-radians) by moving the next joint
+// onto the previous one. They would turn back on themselves one offset later.
+inline constexpr double kOffsetSliver = 1e-5;
+
 // mm. An offset piece is kept when its distance to the curves it was offset from is at
 // least the offset distance minus this. Exact offsets sit at the distance to rounding
 // (~1e-13 mm); anything that comes closer by more than this is cut away.
@@ -81,5 +92,40 @@ inline constexpr double kProfileTestChord = 1e-3;
 // Dimensionless. A DXF entity's unit extrusion direction whose |x| and |y| are below this is
 // +Z or -Z (the drawing plane, possibly mirrored); the DXF reader skips any other direction.
 inline constexpr double kDxfExtrusionAxis = 1e-9;
+
+// ---- NURBS curves (kernels/curves/nurbs_*.cpp) ----
+
+// Dimensionless, relative to the knot range t1 - t0. A parameter within this of an existing
+// knot is that knot: knot insertion and splitting raise its multiplicity instead of creating a
+// span too short to evaluate reliably.
+inline constexpr double kKnotSnap = 1e-12;
+
+// mm. Smallest chordal / offset / arc-fit tolerance the NURBS approximations honour; smaller
+// requests are raised to it (below it, rounding of evaluated points would keep refinement
+// going until its depth cap).
+inline constexpr double kNurbsMinTol = 1e-9;
+
+// Dimensionless, relative to the curve's size (diagonal of its control-point box). A
+// control-polygon leg shorter than this has no direction of its own (the Tiller-Hanson offset
+// borrows its neighbour's normal), and curve ends closer than this make the curve closed.
+inline constexpr double kNurbsZeroLength = 1e-12;
+
+// Dimensionless. Two consecutive offset control-polygon legs whose unit directions have
+// |cross| below this are parallel: the Tiller-Hanson control point is the offset vertex itself
+// instead of the legs' far-away intersection.
+inline constexpr double kOffsetParallelLegs = 1e-9;
+
+// Dimensionless, relative to (curve size / knot range). A first derivative shorter than this
+// is zero (a cusp or a repeated control point): the tangent is taken from a short chord.
+inline constexpr double kNurbsZeroSpeed = 1e-10;
+
+// mm. Newton refinement of a NURBS self-intersection stops when the two curve points are
+// closer than this.
+inline constexpr double kCurveIntersect = 1e-11;
+
+// Radians. A fitted arc whose |sweep| is below this is emitted as a line: its centre would be
+// ill-conditioned (radius ~ chord / sweep) and it differs from its chord by chord * sweep / 8,
+// which is included in the measured deviation anyway.
+inline constexpr double kArcAsLineSweep = 1e-7;
 
 }  // namespace ncpath::tol

@@ -19,11 +19,55 @@ struct RawSeg {
   std::uint32_t prev, next;  // neighbours in the crude loop (indices into the raw list)
 };
 
+// Crossing of the unbounded carriers of two segments (lines, full circles) nearest to v.
+bool extended_crossing(const Seg2& s0, const Seg2& s1, const Vec2& v, Vec2& out) {
+  Vec2 cand[2];
+  int n = 0;
+  if (!s0.is_arc() && !s1.is_arc()) {
+    const Vec2 d0 = s0.b - s0.a, d1 = s1.b - s1.a;
+    const double den = cross(d0, d1);
+    if (den == 0) return false;
+    cand[n++] = s0.a + (cross(s1.a - s0.a, d1) / den) * d0;
+  } else {
+    // Treat a line as the chord of a huge circle is not needed: intersect exactly.
+    const Seg2& a = s0.is_arc() ? s0 : s1;
+    const Seg2& b = s0.is_arc() ? s1 : s0;
+    if (!b.is_arc()) {
+      const Vec2 d = b.b - b.a;
+      const double l = d.norm();
+      if (l == 0) return false;
+      const Vec2 u = d / l;
+      const Vec2 foot = b.a + (a.c - b.a).dot(u) * u;
+      const double h2 = a.r * a.r - (a.c - foot).squaredNorm();
+      if (h2 < 0) return false;
+      const double h = std::sqrt(h2);
+      cand[n++] = foot - h * u;
+      cand[n++] = foot + h * u;
+    } else {
+      const Vec2 d = b.c - a.c;
+      const double l = d.norm();
+      if (l == 0) return false;
+      const double x = (l * l + a.r * a.r - b.r * b.r) / (2 * l);
+      const double h2 = a.r * a.r - x * x;
+      if (h2 < 0) return false;
+      const Vec2 u = d / l, w(-u.y(), u.x());
+      const double h = std::sqrt(h2);
+      cand[n++] = a.c + x * u - h * w;
+      cand[n++] = a.c + x * u + h * w;
+    }
+  }
+  out = cand[0];
+  if (n == 2 && (cand[1] - v).norm() < (cand[0] - v).norm()) out = cand[1];
+  return true;
+}
+
 // Joins `prev` (its end) to `next` (its start) around the original vertex v; may trim
 // both, and may append a joining segment to out.
 void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
+  // Ends that (nearly) meet are made to meet: a joining piece shorter than kOffsetJoint
+  // would only be a rounding artefact, and would turn back on itself one level later.
   const double eps = tol::kOffsetPoint;
-  if ((prev.b - next.a).norm() <= eps) {
+  if ((prev.b - next.a).norm() <= tol::kOffsetJoint) {
     next.a = prev.b;
     return;
   }
@@ -43,6 +87,17 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
     if (n == 2 && (hits[1].p - v).norm() < (hits[0].p - v).norm()) best = 1;
     prev.b = hits[best].p;
     next.a = hits[best].p;
+    return;
+  }
+  // Nearly parallel ends (a corner of a few micro-radians) cross just past an end, where
+  // the bounded intersection test cannot see it: meet at the crossing of the extended
+  // curves when it is that close.
+  Vec2 p;
+  const double gap = (prev.b - next.a).norm();
+  if (gap <= 1e-3 * (prev.b - v).norm() && extended_crossing(prev, next, v, p) &&
+      (p - prev.b).norm() <= 2 * gap + tol::kOffsetJoint) {
+    prev.b = p;
+    next.a = p;
     return;
   }
   out.push_back(make_line(prev.b, next.a, prev.source));
@@ -269,8 +324,8 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
       for (int k = 0; k < h; ++k) {
         const Vec2& p = hits[k].p;
         // The joint shared with a neighbour is not a crossing.
-        if (raw[i].next == j && (p - raw[i].s.b).norm() <= eps) continue;
-        if (raw[i].prev == j && (p - raw[i].s.a).norm() <= eps) continue;
+        if (raw[i].next == j && (p - raw[i].s.b).norm() <= tol::kOffsetJoint) continue;
+        if (raw[i].prev == j && (p - raw[i].s.a).norm() <= tol::kOffsetJoint) continue;
         splits[i].push_back({hits[k].t0, p});
         splits[j].push_back({hits[k].t1, p});
         ++res.stats.intersections;
@@ -366,7 +421,12 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
       res.stats.open_fragments += used.size();
       continue;
     }
-    // Make the joints exact.
+    // Drop slivers by joining their neighbours, then make the joints exact.
+    std::vector<Seg2> kept_segs;
+    for (const Seg2& sg : loop.segs)
+      if (length(sg) > tol::kOffsetSliver) kept_segs.push_back(sg);
+    if (kept_segs.size() < 2) continue;
+    loop.segs = std::move(kept_segs);
     for (std::size_t s = 0; s < loop.segs.size(); ++s)
       loop.segs[(s + 1) % loop.segs.size()].a = loop.segs[s].b;
     loop.area2 = loop_area2(loop.segs);
@@ -374,6 +434,28 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     std::sort(loop.parents.begin(), loop.parents.end());
     loop.parents.erase(std::unique(loop.parents.begin(), loop.parents.end()), loop.parents.end());
     res.loops.push_back(std::move(loop));
+  }
+  // Orientation check: offsetting a pocket (its input has a clockwise boundary) can only
+  // leave holes inside boundaries. A counter-clockwise loop outside every clockwise one is
+  // what is left of islands after the boundary closed over them: no material there.
+  bool pocket = false;
+  for (const auto& l : loops) pocket |= loop_area2(l) < 0;
+  if (pocket) {
+    std::vector<std::uint8_t> ok(res.loops.size());
+    for (std::size_t i = 0; i < res.loops.size(); ++i) {
+      ok[i] = res.loops[i].area2 < 0;
+      for (const OffsetLoop& o : res.loops)
+        if (!ok[i] && o.area2 < 0 && winding_number(o.segs, res.loops[i].segs.front().a) != 0)
+          ok[i] = 1;
+    }
+    std::vector<OffsetLoop> valid;
+    for (std::size_t i = 0; i < res.loops.size(); ++i) {
+      if (ok[i])
+        valid.push_back(std::move(res.loops[i]));
+      else
+        ++res.stats.dropped_holes;
+    }
+    res.loops = std::move(valid);
   }
   return res;
 }

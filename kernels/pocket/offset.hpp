@@ -15,7 +15,10 @@
 //  4. validation: a piece is kept when no input curve comes closer to it than d (exact
 //     segment-segment distances, grid-indexed);
 //  5. regrouping: kept pieces are stitched end to end into closed loops (simple loops);
-//     at a point where several continue, the one turning most to the right is taken.
+//     at a point where several continue, the one turning most to the right is taken;
+//     segments shorter than tol::kOffsetSliver are merged into their neighbours;
+//  6. orientation: when the input has a clockwise boundary, counter-clockwise loops
+//     (holes) must lie inside a clockwise result loop; others are dropped.
 // The result's loops have the material on their right again, so the result can be offset
 // once more: offsetting by d1 then d2 equals offsetting by d1 + d2 (erosion composes), which
 // is how multi-level offsets are built without drift.
@@ -38,6 +41,7 @@ struct OffsetStats {
   std::uint64_t pieces = 0;         // after splitting
   std::uint64_t pieces_kept = 0;    // after validation
   std::uint64_t open_fragments = 0; // kept pieces that did not close into a loop (dropped)
+  std::uint64_t dropped_holes = 0;  // counter-clockwise loops outside every boundary
 };
 
 struct OffsetResult {

@@ -1,0 +1,40 @@
+#pragma once
+// Multi-level contour-parallel offsets and the offset generation history (OGH) graph.
+//
+// Level 1 is the input offset by `first` (tool radius + stock to leave); every further
+// level offsets the previous level's loops by `step` (the stepover), until nothing is left.
+// Offsetting the previous level instead of the input by the summed distance is exact for
+// lines and arcs (erosion composes) and keeps each validation local to one stepover.
+//
+// Loops of one level fall into independent regions (an outer, clockwise loop and the
+// counter-clockwise holes inside it); the next level of each region depends on that region
+// only, so callers may offset regions in parallel (engine/pocket_offset.hpp does).
+#include <cstdint>
+#include <vector>
+
+#include "kernels/pocket/offset.hpp"
+
+namespace ncpath {
+
+// Groups the loops of one level into regions: each clockwise loop with the
+// counter-clockwise loops directly inside it (smallest enclosing clockwise loop). A
+// counter-clockwise loop inside no clockwise loop (an island's offset when the input has
+// no boundary) forms a region of its own. Regions are listed in order of their first loop.
+std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLoop>& loops);
+
+struct LevelLoop {
+  OffsetLoop loop;  // loop.parents: indices into OffsetLevels::loops of the level above
+  std::uint32_t level = 0;  // 1 = first offset of the input
+};
+
+struct OffsetLevels {
+  std::vector<LevelLoop> loops;        // level by level, in a deterministic order
+  std::vector<std::uint32_t> level_start;  // loops of level k: [level_start[k-1], level_start[k])
+  std::uint64_t open_fragments = 0;    // summed over all levels (0 when all is well)
+};
+
+// Single-threaded. input: closed loops, material on the right. Stops after max_levels.
+OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first,
+                           double step, std::uint32_t max_levels = 1000000);
+
+}  // namespace ncpath
