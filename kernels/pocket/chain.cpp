@@ -328,7 +328,7 @@ ChainResult chain_and_nest(const std::vector<ProfileCurve>& in_curves,
   // 6. Orient (boundaries clockwise, islands counter-clockwise) and emit regions.
   auto emit = [&](const Loop& l) {
     Profile p;
-    const bool flip = false;
+    const bool flip = (l.depth % 2 == 0) == (l.area2 > 0);
     auto add = [&](const Step& st) {
       ProfileCurve c = curves[st.curve];
       const bool rev = st.reversed != flip;

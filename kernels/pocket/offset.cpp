@@ -19,6 +19,15 @@ struct RawSeg {
   std::uint32_t prev, next;  // neighbours in the crude loop (indices into the raw list)
 };
 
+// Moves an end of s to p (end = true: s.b, else s.a). An arc whose new end lands just
+// behind its other end would turn the long way round the circle; such a sliver becomes the
+// straight piece it really is.
+void move_end(Seg2& s, const Vec2& p, bool end) {
+  const double before = std::abs(sweep(s));
+  (end ? s.b : s.a) = p;
+  if (s.is_arc() && std::abs(sweep(s)) > before + 1e-6) s.kind = SegKind::kLine;
+}
+
 // Crossing of the unbounded carriers of two segments (lines, full circles) nearest to v.
 bool extended_crossing(const Seg2& s0, const Seg2& s1, const Vec2& v, Vec2& out) {
   Vec2 cand[2];
@@ -68,7 +77,7 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
   // would only be a rounding artefact, and would turn back on itself one level later.
   const double eps = tol::kOffsetPoint;
   if ((prev.b - next.a).norm() <= tol::kOffsetJoint) {
-    next.a = prev.b;
+    move_end(next, prev.b, false);
     return;
   }
   const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
@@ -85,8 +94,8 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
   if (n > 0) {
     int best = 0;
     if (n == 2 && (hits[1].p - v).norm() < (hits[0].p - v).norm()) best = 1;
-    prev.b = hits[best].p;
-    next.a = hits[best].p;
+    move_end(prev, hits[best].p, true);
+    move_end(next, hits[best].p, false);
     return;
   }
   // Nearly parallel ends (a corner of a few micro-radians) cross just past an end, where
@@ -96,8 +105,8 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
   const double gap = (prev.b - next.a).norm();
   if (gap <= 1e-3 * (prev.b - v).norm() && extended_crossing(prev, next, v, p) &&
       (p - prev.b).norm() <= 2 * gap + tol::kOffsetJoint) {
-    prev.b = p;
-    next.a = p;
+    move_end(prev, p, true);
+    move_end(next, p, false);
     return;
   }
   out.push_back(make_line(prev.b, next.a, prev.source));
