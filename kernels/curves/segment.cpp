@@ -83,13 +83,18 @@ double area2_contribution(const Seg2& s) {
 }
 
 // True when the direction of p from the centre lies within the arc's sweep (inclusive).
+// Cross products only (this runs in every offset's inner loops): a counter-clockwise arc
+// from direction u to direction w covers v when v lies counter-clockwise from u and
+// clockwise from w (minor arcs), or outside the minor arc from w to u (major arcs).
 bool arc_contains_angle(const Seg2& s, const Vec2& p) {
-  const double th = sweep(s);
-  const double a0 = angle_of(s.a, s.c), ap = angle_of(p, s.c);
-  double d = s.turn() > 0 ? ap - a0 : a0 - ap;
-  while (d < 0) d += 2 * std::numbers::pi;
-  while (d >= 2 * std::numbers::pi) d -= 2 * std::numbers::pi;
-  return d <= std::abs(th);
+  Vec2 u = s.a - s.c, w = s.b - s.c;
+  if (s.kind == SegKind::kArcCw) std::swap(u, w);  // a clockwise arc = ccw from b to a
+  const Vec2 v = p - s.c;
+  const double uw = cross(u, w);
+  if (uw > 0) return cross(u, v) >= 0 && cross(v, w) >= 0;
+  if (uw < 0) return !(cross(w, v) > 0 && cross(v, u) > 0);
+  if (u.dot(w) > 0) return cross(u, v) == 0 && u.dot(v) > 0;  // no sweep: one direction
+  return cross(u, v) >= 0;                                    // a half circle
 }
 
 double distance(const Seg2& s, const Vec2& p) {

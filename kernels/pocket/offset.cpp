@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 #include "kernels/curves/intersect.hpp"
@@ -17,6 +18,7 @@ struct RawSeg {
   Seg2 s;
   std::uint32_t loop;  // input loop it was offset from
   std::uint32_t prev, next;  // neighbours in the crude loop (indices into the raw list)
+  bool connector;  // a line joining offsets that miss each other: not itself an offset
 };
 
 // Moves an end of s to p (end = true: s.b, else s.a). An arc whose new end lands just
@@ -116,6 +118,7 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
 void crude_loop(const std::vector<Seg2>& in, double d, std::uint32_t loop_id,
                 std::vector<RawSeg>& raw) {
   std::vector<Seg2> segs;  // offsets and joins, in order
+  std::vector<bool> connector;
   std::vector<Vec2> vertex;  // vertex[k]: the input vertex before offsets[k]
   std::vector<Seg2> offs;
   for (const Seg2& s : in) {
@@ -134,12 +137,16 @@ void crude_loop(const std::vector<Seg2>& in, double d, std::uint32_t loop_id,
   // join() of the last pair may have moved offs[0].a; re-snap the first pair's joint.
   for (std::size_t k = 0; k < n; ++k) {
     segs.push_back(offs[k]);
-    for (const Seg2& j : joins[k]) segs.push_back(j);
+    connector.push_back(false);
+    for (const Seg2& j : joins[k]) {
+      segs.push_back(j);
+      connector.push_back(!j.is_arc());  // join arcs are true offsets (of a vertex)
+    }
   }
   const auto base = static_cast<std::uint32_t>(raw.size());
   const auto m = static_cast<std::uint32_t>(segs.size());
   for (std::uint32_t k = 0; k < m; ++k)
-    raw.push_back({segs[k], loop_id, base + (k + m - 1) % m, base + (k + 1) % m});
+    raw.push_back({segs[k], loop_id, base + (k + m - 1) % m, base + (k + 1) % m, connector[k]});
 }
 
 struct Box {
@@ -320,6 +327,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     return box[a].lo.x() < box[b].lo.x() || (box[a].lo.x() == box[b].lo.x() && a < b);
   });
   std::vector<std::vector<SplitPoint>> splits(n);
+  std::vector<std::uint8_t> crossed(loops.size());  // the crude loop meets itself or another
   std::vector<std::uint32_t> active;
   for (const std::uint32_t i : order) {
     std::size_t keep = 0;
@@ -337,6 +345,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
         if (raw[i].prev == j && (p - raw[i].s.a).norm() <= tol::kOffsetJoint) continue;
         splits[i].push_back({hits[k].t0, p});
         splits[j].push_back({hits[k].t1, p});
+        crossed[raw[i].loop] = crossed[raw[j].loop] = 1;
         ++res.stats.intersections;
       }
     }
@@ -344,35 +353,92 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
   }
 
   // Split into pieces.
+  // A piece starts a new run where its validity may change: after a crossing, and at
+  // either end of a connector (connectors are validated on their own).
   struct Piece {
     Seg2 s;
     std::uint32_t loop;
+    bool run_start;
+    bool connector;
   };
   std::vector<Piece> pieces;
+  std::vector<std::uint8_t> cut_at_start(n, 0);  // a crossing sits on the raw joint
+  for (std::size_t i = 0; i < n; ++i)
+    for (const SplitPoint& q : splits[i]) {
+      if ((q.p - raw[i].s.a).norm() <= eps) cut_at_start[i] = 1;
+      if ((q.p - raw[i].s.b).norm() <= eps) cut_at_start[raw[i].next] = 1;
+    }
   for (std::size_t i = 0; i < n; ++i) {
     const Seg2& s = raw[i].s;
     std::vector<SplitPoint>& sp = splits[i];
     std::sort(sp.begin(), sp.end(), [](const SplitPoint& a, const SplitPoint& b) { return a.t < b.t; });
+    const bool conn = raw[i].connector;
+    bool start = cut_at_start[i] || conn || raw[raw[i].prev].connector;
     Vec2 from = s.a;
     for (const SplitPoint& q : sp) {
       if ((q.p - from).norm() <= eps || (q.p - s.b).norm() <= eps) continue;
-      pieces.push_back({sub_segment(s, from, q.p), raw[i].loop});
+      pieces.push_back({sub_segment(s, from, q.p), raw[i].loop, start, conn});
+      start = true;
       from = q.p;
     }
-    pieces.push_back({sub_segment(s, from, s.b), raw[i].loop});
+    pieces.push_back({sub_segment(s, from, s.b), raw[i].loop, start, conn});
   }
   res.stats.pieces = pieces.size();
 
-  // Validation against the input curves.
+  // Validation. A crude loop that crosses nothing (neither itself nor another loop) is a
+  // simple closed curve parallel to its input: it is the true offset when it runs the same
+  // way round as its input, and an inverted remnant (a loop offset past its own width)
+  // otherwise - no distance test needed. Pieces of loops that cross something are tested
+  // against the input curves.
+  std::vector<double> crude_area2(loops.size(), 0.0);
+  for (const RawSeg& r : raw) crude_area2[r.loop] += area2_contribution(r.s);
+  std::vector<std::uint8_t> same_way(loops.size());
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    same_way[l] = (crude_area2[l] < 0) == (loop_area2(loops[l]) < 0);
   std::vector<Seg2> input;
   for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
-  double total = 0;
-  for (const Seg2& s : input) total += length(s);
-  SegGrid grid(input, std::max(d, 4 * total / std::max<std::size_t>(1, input.size())));
+  std::optional<SegGrid> grid;
   std::vector<std::uint8_t> keep(pieces.size());
+  auto valid = [&](const Seg2& sg) {
+    if (!grid) {
+      double total = 0;
+      for (const Seg2& x : input) total += length(x);
+      grid.emplace(input, std::max(d, 4 * total / std::max<std::size_t>(1, input.size())));
+    }
+    return !grid->any_closer(sg, d - tol::kOffsetValid);
+  };
+  // Pieces of one loop are contiguous (raw loops are, and pieces follow raw order).
+  for (std::size_t b = 0; b < pieces.size();) {
+    const std::uint32_t l = pieces[b].loop;
+    std::size_t e = b;
+    while (e < pieces.size() && pieces[e].loop == l) ++e;
+    if (!crossed[l]) {
+      for (std::size_t k = b; k < e; ++k) keep[k] = same_way[l];
+    } else {
+      // Every run (cyclic) is valid or invalid as a whole: test its longest piece.
+      const std::size_t m = e - b;
+      std::size_t first = 0;
+      while (first < m && !pieces[b + first].run_start) ++first;
+      if (first == m) first = 0;
+      for (std::size_t r = 0; r < m;) {
+        std::size_t len = 1;
+        while (len < m && !pieces[b + (first + r + len) % m].run_start) ++len;
+        std::size_t best = b + (first + r) % m;
+        for (std::size_t q = 1; q < len; ++q) {
+          const std::size_t k = b + (first + r + q) % m;
+          if ((pieces[k].s.b - pieces[k].s.a).squaredNorm() >
+              (pieces[best].s.b - pieces[best].s.a).squaredNorm())
+            best = k;
+        }
+        const std::uint8_t ok = valid(pieces[best].s) ? 1 : 0;
+        for (std::size_t q = 0; q < len; ++q) keep[b + (first + r + q) % m] = ok;
+        r += len;
+      }
+    }
+    b = e;
+  }
   for (std::size_t k = 0; k < pieces.size(); ++k) {
-    if (length(pieces[k].s) <= eps) continue;
-    keep[k] = !grid.any_closer(pieces[k].s, d - tol::kOffsetValid);
+    if ((pieces[k].s.b - pieces[k].s.a).norm() <= eps && !pieces[k].s.is_arc()) keep[k] = 0;
     res.stats.pieces_kept += keep[k];
   }
 
