@@ -360,6 +360,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     std::uint32_t loop;
     bool run_start;
     bool connector;
+    bool at_crossing;  // starts at a crossing (where another piece may continue instead)
   };
   std::vector<Piece> pieces;
   std::vector<std::uint8_t> cut_at_start(n, 0);  // a crossing sits on the raw joint
@@ -374,14 +375,15 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     std::sort(sp.begin(), sp.end(), [](const SplitPoint& a, const SplitPoint& b) { return a.t < b.t; });
     const bool conn = raw[i].connector;
     bool start = cut_at_start[i] || conn || raw[raw[i].prev].connector;
+    bool crossing = cut_at_start[i];
     Vec2 from = s.a;
     for (const SplitPoint& q : sp) {
       if ((q.p - from).norm() <= eps || (q.p - s.b).norm() <= eps) continue;
-      pieces.push_back({sub_segment(s, from, q.p), raw[i].loop, start, conn});
-      start = true;
+      pieces.push_back({sub_segment(s, from, q.p), raw[i].loop, start, conn, crossing});
+      start = crossing = true;
       from = q.p;
     }
-    pieces.push_back({sub_segment(s, from, s.b), raw[i].loop, start, conn});
+    pieces.push_back({sub_segment(s, from, s.b), raw[i].loop, start, conn, crossing});
   }
   res.stats.pieces = pieces.size();
 
@@ -449,10 +451,19 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
             0x9E3779B97F4A7C15ull) ^
            static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(p.y() / q)));
   };
+  // Away from crossings a piece continues into the next piece of its own crude loop;
+  // only pieces starting at crossings are looked up by position.
+  std::vector<std::uint32_t> succ(pieces.size());
+  for (std::size_t b = 0; b < pieces.size();) {
+    std::size_t e = b;
+    while (e < pieces.size() && pieces[e].loop == pieces[b].loop) ++e;
+    for (std::size_t k = b; k < e; ++k) succ[k] = static_cast<std::uint32_t>(k + 1 < e ? k + 1 : b);
+    b = e;
+  }
   std::unordered_multimap<std::uint64_t, std::uint32_t> starts;
   for (std::uint32_t k = 0; k < pieces.size(); ++k)
-    if (keep[k]) starts.emplace(key(pieces[k].s.a), k);
-  auto find_next = [&](const Vec2& p, const Vec2& incoming) -> std::int64_t {
+    if (keep[k] && pieces[k].at_crossing) starts.emplace(key(pieces[k].s.a), k);
+  auto find_at_crossing = [&](const Vec2& p, const Vec2& incoming) -> std::int64_t {
     std::int64_t best = -1;
     double best_turn = 1e300;
     const double q = 1e-6;
@@ -488,7 +499,12 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
         closed = true;
         break;
       }
-      const std::int64_t nk = find_next(end, tangent_at(pieces[k].s, 1));
+      const std::uint32_t sk = succ[k];
+      std::int64_t nk;
+      if (!pieces[sk].at_crossing && (pieces[sk].s.a - end).norm() <= 10 * eps)
+        nk = keep[sk] ? std::int64_t{sk} : -1;
+      else
+        nk = find_at_crossing(end, tangent_at(pieces[k].s, 1));
       if (nk < 0) break;
       k = static_cast<std::uint32_t>(nk);
     }
@@ -499,7 +515,8 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     // Drop slivers by joining their neighbours, then make the joints exact.
     std::vector<Seg2> kept_segs;
     for (const Seg2& sg : loop.segs)
-      if (length(sg) > tol::kOffsetSliver) kept_segs.push_back(sg);
+      if ((sg.b - sg.a).norm() > tol::kOffsetSliver || (sg.is_arc() && length(sg) > tol::kOffsetSliver))
+        kept_segs.push_back(sg);
     if (kept_segs.size() < 2) continue;
     loop.segs = std::move(kept_segs);
     for (std::size_t s = 0; s < loop.segs.size(); ++s)
