@@ -30,7 +30,9 @@ void expect_arcs_of(const Nurbs2& n, double tol, const std::vector<Seg2>& segs) 
     const Seg2& s = segs[i];
     EXPECT_EQ(s.source, 42u);
     EXPECT_NE(s.a, s.b) << i;
-    if (i + 1 < segs.size()) ASSERT_EQ(s.b, segs[i + 1].a) << "chain broken at " << i;
+    if (i + 1 < segs.size()) {
+      ASSERT_EQ(s.b, segs[i + 1].a) << "chain broken at " << i;
+    }
     if (s.is_arc()) {
       EXPECT_NEAR((s.a - s.c).norm(), s.r, 1e-9 * (1 + s.r)) << i;
       EXPECT_NEAR((s.b - s.c).norm(), s.r, 1e-9 * (1 + s.r)) << i;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <random>
 
 #include "kernels/curves/nurbs.hpp"
@@ -106,7 +107,8 @@ TEST(ChainAndNest, NestedIslandAndPocketInIslandHole) {
   ASSERT_EQ(outer.islands.size(), 2u);
   for (const Profile& i : outer.islands) EXPECT_GT(area2(i), 0);
   EXPECT_LT(area2(inner.boundary), 0);
-  EXPECT_NEAR(area2(inner.boundary), -2 * M_PI * 25 * 25, 2 * M_PI * 25 * 25 * 1e-4);
+  EXPECT_NEAR(area2(inner.boundary), -2 * std::numbers::pi * 25 * 25,
+              2 * std::numbers::pi * 25 * 25 * 1e-4);
   ASSERT_EQ(inner.islands.size(), 1u);
   EXPECT_NEAR(area2(inner.islands[0]), 2 * 10 * 10, 1e-9);
   for (const Region& g : r.regions) {
