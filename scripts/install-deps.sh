@@ -39,6 +39,7 @@ EXTRA=(
   libssl-dev           # batch/output/CMakeLists.txt: find_package(OpenSSL COMPONENTS Crypto)
   nlohmann-json3-dev   # batch/CMakeLists.txt: find_package(nlohmann_json 3)
   libdxflib-dev        # batch/io/CMakeLists.txt: DXF pocket profiles (pkg-config dxflib)
+  libpolyclipping-dev  # tests/kernels: Clipper as an independent offset oracle (tests only)
 )
 # shellcheck disable=SC2206  # word splitting of the env var is intended
 EXTRA+=(${NCPATH_EXTRA_PACKAGES:-})

@@ -85,7 +85,7 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
   int failed = 0;
   for (const auto& o : outcomes) {
     if (o.status == "ok") {
-      std::printf("  %-24s ok      %spoints in %.2f s (%spoints/s drop-cutting), peak RSS %.0f MB\n",
+      std::printf("  %-24s ok      %spoints in %.2f s (%spoints/s computing), peak RSS %.0f MB\n",
                   o.name.c_str(), human(static_cast<double>(o.points)).c_str(), o.seconds,
                   human(o.compute_s > 0 ? o.points / o.compute_s : 0).c_str(),
                   o.peak_rss_bytes / 1048576.0);
@@ -135,6 +135,34 @@ int main(int argc, char** argv) {
   drop->add_option("--points", points, "CSV of x,y lines (mm); a blank line starts a new path")
       ->required();
 
+  std::string profile, offset_tool = "flat:6", offset_out = "ncpath-out.h5", offset_name,
+      stepover_text;
+  int offset_threads = 0;
+  bool offset_quiet = false;
+  jobs::OffsetParams op;
+  CLI::App* offset =
+      app.add_subcommand("offset", "Multi-level pocket offset loops of a DXF or TOML profile");
+  offset->add_option("--profile", profile, "Pocket profile: .dxf or .toml (docs/profile-format.md)")
+      ->required();
+  offset->add_option("--tool", offset_tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
+      ->capture_default_str();
+  offset->add_option("--stepover", stepover_text,
+                     "Distance between levels: mm, or a percentage of the tool diameter (40%)")
+      ->required();
+  offset->add_option("--stock", op.stock, "Material left on walls and islands (mm)")
+      ->capture_default_str();
+  offset->add_option("--depth", op.depth, "Depth at which loops are written as paths (mm)")
+      ->capture_default_str();
+  offset->add_option("--tolerance", op.tolerance,
+                     "NURBS-to-arc and arc-to-polyline tolerance (mm)")->capture_default_str();
+  offset->add_option("--join-tolerance", op.join_tolerance,
+                     "Profile end points closer than this are joined (mm)")->capture_default_str();
+  offset->add_option("--out", offset_out, "HDF5 file to write")->capture_default_str();
+  offset->add_option("--name", offset_name, "Job name inside the HDF5 file (default: offset)");
+  offset->add_option("--threads", offset_threads, "Worker threads, 0 = all cores")
+      ->capture_default_str();
+  offset->add_flag("-q,--quiet", offset_quiet, "No progress bar");
+
   std::string batch_file, batch_out;
   int batch_threads = -1;
   bool batch_quiet = false;
@@ -161,6 +189,25 @@ int main(int argc, char** argv) {
     batch.output = rc.out;
     batch.threads = rc.threads;
     quiet = rc.quiet;
+    batch.jobs.push_back(std::move(j));
+  } else if (offset->parsed()) {
+    jobs::JobSpec j;
+    j.operation = jobs::Operation::kOffset;
+    j.name = offset_name.empty() ? "offset" : offset_name;
+    j.input = profile;
+    j.tool_text = offset_tool;
+    j.offset = op;
+    std::string e = jobs::parse_tool(offset_tool, j.tool);
+    if (!e.empty()) e = "--tool: " + e;
+    if (e.empty()) e = jobs::parse_stepover(stepover_text, j.tool, j.offset.stepover);
+    if (e.empty()) e = jobs::validate(j.offset);
+    if (!e.empty()) {
+      j.error = e;
+      j.error_status = "invalid_parameter";
+    }
+    batch.output = offset_out;
+    batch.threads = offset_threads;
+    quiet = offset_quiet;
     batch.jobs.push_back(std::move(j));
   } else if (drop->parsed()) {
     jobs::JobSpec j = job_from(dc, jobs::Operation::kDrop);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/jobs/offset_job.hpp"
 #include "batch/jobs/points_csv.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "engine/drop_points.hpp"
@@ -20,6 +21,61 @@ using out::StatValue;
 
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
+// Reads the mesh, transforms it and runs the raster or drop operation into cl.
+void run_mesh_job(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
+                  std::vector<StatValue>& stats, JobOutcome& o) {
+  Stopwatch read_clock;
+  io::MeshReadResult in = io::read_mesh(job.input);
+  stats.push_back({"input_format", in.stats.format, ""});
+  stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
+  stats.push_back({"facets_read", i64(in.stats.facets_read), ""});
+  stats.push_back({"facets_skipped_degenerate_in_file", i64(in.stats.facets_degenerate), ""});
+  const TransformOutcome tr = apply_transform(job.transform, in.mesh);
+  if (!tr.ok()) throw std::invalid_argument("transform." + tr.error);
+  stats.push_back({"transform_scale", tr.scale, ""});
+  stats.push_back({"read_s", read_clock.seconds(), "s"});
+
+  RunControl control;
+  control.progress = obs.progress;
+  auto sink = [&](const ClChunk& c) {
+    cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+  };
+  if (job.operation == Operation::kRaster) {
+    const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
+    o.points = st.cut_points + st.link_points;
+    o.compute_s = st.compute_s;
+    stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
+    stats.push_back({"facets_used", i64(st.facets), ""});
+    stats.push_back({"index_build_s", st.index_s, "s"});
+    stats.push_back({"lines", i64(st.lines), ""});
+    stats.push_back({"points", i64(o.points), ""});
+    stats.push_back({"cut_points", i64(st.cut_points), ""});
+    stats.push_back({"link_points", i64(st.link_points), ""});
+    stats.push_back({"adaptive_points", i64(st.adaptive_points), ""});
+    stats.push_back({"floor_points", i64(st.floor_points), ""});
+    stats.push_back({"floor_z", st.floor_z, "mm"});
+    stats.push_back({"scan_x_min", st.rect[0], "mm"});
+    stats.push_back({"scan_y_min", st.rect[1], "mm"});
+    stats.push_back({"scan_x_max", st.rect[2], "mm"});
+    stats.push_back({"scan_y_max", st.rect[3], "mm"});
+    stats.push_back({"compute_s", st.compute_s, "s"});
+    stats.push_back({"write_s", st.sink_s, "s"});
+  } else {
+    const PointList pts = read_points_csv(job.points);
+    const DropPointsStats st =
+        run_drop_points(in.mesh, job.tool, pts.xy, pts.path_sizes, sink, control);
+    o.points = st.points;
+    o.compute_s = st.compute_s;
+    stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
+    stats.push_back({"facets_used", i64(st.facets), ""});
+    stats.push_back({"index_build_s", st.index_s, "s"});
+    stats.push_back({"points", i64(st.points), ""});
+    stats.push_back({"no_contact_points", i64(st.no_contact), ""});
+    stats.push_back({"compute_s", st.compute_s, "s"});
+    stats.push_back({"write_s", st.sink_s, "s"});
+  }
+}
+
 // Runs one job; fills stats and returns the outcome. Never throws for job-level problems.
 JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
                    std::vector<StatValue>& stats) {
@@ -30,63 +86,15 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
     o.status = status;
     o.message = message;
   };
-  try {
-    if (!job.error.empty()) {
-      fail(job.error_status.c_str(), job.error);
-      return o;
-    }
-    Stopwatch read_clock;
-    io::MeshReadResult in = io::read_mesh(job.input);
-    stats.push_back({"input_format", in.stats.format, ""});
-    stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
-    stats.push_back({"facets_read", i64(in.stats.facets_read), ""});
-    stats.push_back({"facets_skipped_degenerate_in_file", i64(in.stats.facets_degenerate), ""});
-    const TransformOutcome tr = apply_transform(job.transform, in.mesh);
-    if (!tr.ok()) {
-      fail("invalid_parameter", "transform." + tr.error);
-      return o;
-    }
-    stats.push_back({"transform_scale", tr.scale, ""});
-    stats.push_back({"read_s", read_clock.seconds(), "s"});
-
-    RunControl control;
-    control.progress = obs.progress;
-    auto sink = [&](const ClChunk& c) {
-      cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
-    };
-    if (job.operation == Operation::kRaster) {
-      const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
-      o.points = st.cut_points + st.link_points;
-      o.compute_s = st.compute_s;
-      stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
-      stats.push_back({"facets_used", i64(st.facets), ""});
-      stats.push_back({"index_build_s", st.index_s, "s"});
-      stats.push_back({"lines", i64(st.lines), ""});
-      stats.push_back({"points", i64(o.points), ""});
-      stats.push_back({"cut_points", i64(st.cut_points), ""});
-      stats.push_back({"link_points", i64(st.link_points), ""});
-      stats.push_back({"adaptive_points", i64(st.adaptive_points), ""});
-      stats.push_back({"floor_points", i64(st.floor_points), ""});
-      stats.push_back({"floor_z", st.floor_z, "mm"});
-      stats.push_back({"scan_x_min", st.rect[0], "mm"});
-      stats.push_back({"scan_y_min", st.rect[1], "mm"});
-      stats.push_back({"scan_x_max", st.rect[2], "mm"});
-      stats.push_back({"scan_y_max", st.rect[3], "mm"});
-      stats.push_back({"compute_s", st.compute_s, "s"});
-      stats.push_back({"write_s", st.sink_s, "s"});
+  if (!job.error.empty()) {
+    fail(job.error_status.c_str(), job.error);
+  } else try {
+    if (job.operation == Operation::kOffset) {
+      const OffsetJobSummary r = run_offset_job(job, cl, stats);
+      o.points = r.points;
+      o.compute_s = r.compute_s;
     } else {
-      const PointList pts = read_points_csv(job.points);
-      const DropPointsStats st =
-          run_drop_points(in.mesh, job.tool, pts.xy, pts.path_sizes, sink, control);
-      o.points = st.points;
-      o.compute_s = st.compute_s;
-      stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
-      stats.push_back({"facets_used", i64(st.facets), ""});
-      stats.push_back({"index_build_s", st.index_s, "s"});
-      stats.push_back({"points", i64(st.points), ""});
-      stats.push_back({"no_contact_points", i64(st.no_contact), ""});
-      stats.push_back({"compute_s", st.compute_s, "s"});
-      stats.push_back({"write_s", st.sink_s, "s"});
+      run_mesh_job(job, cl, obs, stats, o);
     }
     stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
     o.status = "ok";

@@ -1,6 +1,7 @@
 #include "batch/jobs/job_spec.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -11,7 +12,41 @@
 
 namespace ncpath::jobs {
 
-const char* operation_name(Operation op) { return op == Operation::kRaster ? "raster" : "drop"; }
+const char* operation_name(Operation op) {
+  switch (op) {
+    case Operation::kRaster: return "raster";
+    case Operation::kDrop: return "drop";
+    case Operation::kOffset: return "offset";
+  }
+  return "?";
+}
+
+std::string parse_stepover(const std::string& text, const Cutter& tool, double& out) {
+  std::string t = text;
+  const bool percent = !t.empty() && t.back() == '%';
+  if (percent) t.pop_back();
+  double v = 0;
+  auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+  if (t.empty() || ec != std::errc() || ptr != t.data() + t.size())
+    return "stepover '" + text + "' is not a number of mm or a percentage like \"40%\"";
+  out = percent ? v / 100 * 2 * tool.radius : v;
+  return "";
+}
+
+std::string validate(const OffsetParams& p) {
+  std::ostringstream os;
+  if (!(std::isfinite(p.stepover) && p.stepover > 0))
+    os << "stepover must be a positive number of mm, got " << p.stepover;
+  else if (!(std::isfinite(p.stock) && p.stock >= 0))
+    os << "stock must be >= 0 mm, got " << p.stock;
+  else if (!std::isfinite(p.depth))
+    os << "depth must be a number of mm";
+  else if (!(std::isfinite(p.tolerance) && p.tolerance > 0))
+    os << "tolerance must be a positive number of mm, got " << p.tolerance;
+  else if (!(std::isfinite(p.join_tolerance) && p.join_tolerance > 0))
+    os << "join_tolerance must be a positive number of mm, got " << p.join_tolerance;
+  return os.str();
+}
 
 std::string parse_tool(const std::string& text, Cutter& out) {
   std::vector<std::string> parts;
@@ -86,6 +121,10 @@ class Keys {
     }
     return true;
   }
+  bool is_string(const char* key) const {
+    const toml::node* n = t_.get(key);
+    return n && n->is_string();
+  }
   const toml::table* table(const char* key) {
     const toml::node* n = take(key);
     if (!n) return nullptr;
@@ -144,6 +183,23 @@ void parse_raster_params(Keys& k, RasterParams& p) {
   k.number("bin_width", p.bin_width);
 }
 
+void parse_offset_params(Keys& k, JobSpec& job) {
+  OffsetParams& p = job.offset;
+  // stepover: a number (mm) or a string percentage of the tool diameter.
+  std::string text;
+  if (k.is_string("stepover")) {
+    if (k.string("stepover", text))
+      if (std::string e = parse_stepover(text, job.tool, p.stepover); !e.empty())
+        k.fail("stepover", e);
+  } else if (!k.number("stepover", p.stepover)) {
+    k.fail("stepover", "is required (mm, or a percentage of the tool diameter like \"40%\")");
+  }
+  k.number("stock", p.stock);
+  k.number("depth", p.depth);
+  k.number("tolerance", p.tolerance);
+  k.number("join_tolerance", p.join_tolerance);
+}
+
 JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem::path& base) {
   JobSpec job;
   job.name = "job" + std::to_string(index + 1);
@@ -155,8 +211,10 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     job.operation = Operation::kRaster;
   else if (op == "drop")
     job.operation = Operation::kDrop;
+  else if (op == "offset")
+    job.operation = Operation::kOffset;
   else
-    k.fail("operation", "must be \"raster\" or \"drop\", got \"" + op + "\"");
+    k.fail("operation", "must be \"raster\", \"drop\" or \"offset\", got \"" + op + "\"");
   std::string input;
   if (k.string("input", input))
     job.input = (base / input).lexically_normal();
@@ -184,6 +242,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     Keys pk(*pt, "params.");
     if (job.operation == Operation::kRaster) {
       parse_raster_params(pk, job.raster);
+    } else if (job.operation == Operation::kOffset) {
+      parse_offset_params(pk, job);
     } else {
       std::string pts;
       if (pk.string("points", pts)) job.points = (base / pts).lexically_normal();
@@ -191,8 +251,12 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     pk.finish();
     if (pk.error.empty() && job.operation == Operation::kRaster)
       if (std::string e = validate(job.raster); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kOffset)
+      if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (!pk.error.empty()) k.error = k.error.empty() ? pk.error : k.error;
   }
+  if (job.operation == Operation::kOffset && !(job.offset.stepover > 0) && k.error.empty())
+    k.fail("params.stepover", "is required for an offset job (mm, or a percentage like \"40%\")");
   if (job.operation == Operation::kDrop && job.points.empty())
     k.fail("params.points", "is required for a drop job (CSV of x,y lines)");
   k.finish();
@@ -289,6 +353,12 @@ std::string params_json(const JobSpec& job) {
     j["chunk_lines"] = p.chunk_lines;
     j["strip_height"] = p.strip_height;
     j["bin_width"] = p.bin_width;
+  } else if (job.operation == Operation::kOffset) {
+    j["stepover"] = job.offset.stepover;
+    j["stock"] = job.offset.stock;
+    j["depth"] = job.offset.depth;
+    j["tolerance"] = job.offset.tolerance;
+    j["join_tolerance"] = job.offset.join_tolerance;
   } else {
     j["points"] = job.points.string();
   }

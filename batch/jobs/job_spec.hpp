@@ -9,7 +9,7 @@
 //   threads = 0                  # 0 = all cores
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
-//   operation = "raster"          # "raster" or "drop"
+//   operation = "raster"          # "raster", "drop" or "offset"
 //   input     = "../datasets/cache/meshes/bunny00.off"
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
 //   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
@@ -28,7 +28,16 @@
 
 namespace ncpath::jobs {
 
-enum class Operation : std::uint8_t { kRaster, kDrop };
+enum class Operation : std::uint8_t { kRaster, kDrop, kOffset };
+
+// The offset operation (pocket offset loops, no linking yet).
+struct OffsetParams {
+  double stepover = 0;          // mm; from "stepover = 2.4" or "stepover = \"40%\"" (of D)
+  double stock = 0;             // mm left on walls and islands
+  double depth = 0;             // mm below z = 0 at which the loops are written as paths
+  double tolerance = 0.01;      // mm: NURBS to arcs, and arcs to polylines for the paths
+  double join_tolerance = 1e-6; // mm: profile end points closer than this are joined
+};
 
 struct JobSpec {
   std::string name;
@@ -39,6 +48,7 @@ struct JobSpec {
   std::string tool_text;          // as the user wrote it, e.g. "ball:5"
   Cutter tool;
   RasterParams raster;
+  OffsetParams offset;
   std::string error;              // non-empty: the spec is invalid; status + message below
   std::string error_status;       // "invalid_parameter"
 };
@@ -58,7 +68,12 @@ BatchSpec parse_batch_file(const std::filesystem::path& path);
 BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
                            const std::string& source_name);
 
-const char* operation_name(Operation op);  // "raster", "drop"
+const char* operation_name(Operation op);  // "raster", "drop", "offset"
+
+// "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
+std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);
+// "" when usable, else a message naming the key.
+std::string validate(const OffsetParams& params);
 
 // The parameters of a job as JSON text, defaults included (HDF5 `params` attribute).
 std::string params_json(const JobSpec& job);

@@ -129,6 +129,20 @@ class ClJob {
   // and must not already exist in this job (std::invalid_argument; checked before writing).
   void write_stats(std::span<const StatValue> stats);
 
+  // Writes a whole array as /jobs/<job>/<group>/<name> (the group is created when needed):
+  // shape [rows] when cols == 0, else [rows, cols] (data.size() == rows * cols). Chunked and
+  // compressed like the CL datasets; attributes `unit` and `enum`/`description` when given.
+  // For results other than CL paths (offset loops, graphs). Names must be new in the group.
+  void write_array(const std::string& group, const std::string& name,
+                   std::span<const double> data, std::size_t cols, std::string_view unit = "",
+                   std::string_view description = "");
+  void write_array(const std::string& group, const std::string& name,
+                   std::span<const std::int64_t> data, std::size_t cols,
+                   std::string_view unit = "", std::string_view description = "");
+  void write_array(const std::string& group, const std::string& name,
+                   std::span<const std::uint8_t> data, std::size_t cols,
+                   std::string_view unit = "", std::string_view description = "");
+
   // Writes the buffered tails, closes the job's HDF5 objects and flushes the file (finished
   // jobs are then on disk; HDF5 does not promise that a file survives a later crash of the
   // process, but a flushed one usually reads). Idempotent.

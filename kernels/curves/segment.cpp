@@ -121,6 +121,17 @@ void bounds(const Seg2& s, Vec2& lo, Vec2& hi) {
     }
 }
 
+void append_polyline(const Seg2& s, double chordal_tol, std::vector<Vec2>& out) {
+  out.push_back(s.a);
+  if (!s.is_arc()) return;
+  const double th = sweep(s);
+  // A chord spanning angle phi deviates r (1 - cos(phi / 2)) from the arc.
+  const double ratio = std::clamp(1 - chordal_tol / s.r, -1.0, 1.0);
+  const double max_phi = std::max(2 * std::acos(ratio), 1e-6);
+  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(th) / max_phi)));
+  for (int k = 1; k < n; ++k) out.push_back(point_at(s, static_cast<double>(k) / n));
+}
+
 Seg2 reversed(const Seg2& s) {
   Seg2 r = s;
   std::swap(r.a, r.b);

@@ -6,6 +6,7 @@
 // lie on the circle (to rounding). A full circle is two half arcs: a == b is never an arc.
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "kernels/geom/vec.hpp"
 
@@ -53,6 +54,9 @@ double distance(const Seg2& s, const Vec2& p);
 void bounds(const Seg2& s, Vec2& lo, Vec2& hi);
 // True when the direction of p as seen from the arc's centre lies within its sweep.
 bool arc_contains_angle(const Seg2& s, const Vec2& p);
+// Points along s from s.a (included) to s.b (excluded) such that the chords stay within
+// chordal_tol of the segment (mm); appended to out.
+void append_polyline(const Seg2& s, double chordal_tol, std::vector<Vec2>& out);
 // Reversed segment (b to a, opposite turn).
 Seg2 reversed(const Seg2& s);
 

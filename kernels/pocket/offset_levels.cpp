@@ -34,8 +34,12 @@ std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLo
   return regions;
 }
 
+void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& task) {
+  for (std::size_t i = 0; i < n; ++i) task(i);
+}
+
 OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first,
-                           double step, std::uint32_t max_levels) {
+                           double step, std::uint32_t max_levels, const ForEach& for_each) {
   OffsetLevels out;
   // Level 1.
   OffsetResult r = offset_loops(input, first);
@@ -53,13 +57,20 @@ OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double f
     std::vector<OffsetLoop> prev;
     for (std::size_t k = prev_start; k < prev_end; ++k) prev.push_back(out.loops[k].loop);
     ++level;
-    for (const std::vector<std::uint32_t>& region : group_regions(prev)) {
+    // Regions are independent: offset them as tasks into their own slots, then append the
+    // slots in region order.
+    const std::vector<std::vector<std::uint32_t>> regions = group_regions(prev);
+    std::vector<OffsetResult> slots(regions.size());
+    for_each(regions.size(), [&](std::size_t r) {
       std::vector<std::vector<Seg2>> loops;
-      for (std::uint32_t k : region) loops.push_back(prev[k].segs);
-      OffsetResult next = offset_loops(loops, step);
-      out.open_fragments += next.stats.open_fragments;
-      for (OffsetLoop& l : next.loops) {
-        for (std::uint32_t& p : l.parents) p = static_cast<std::uint32_t>(prev_start + region[p]);
+      for (std::uint32_t k : regions[r]) loops.push_back(prev[k].segs);
+      slots[r] = offset_loops(loops, step);
+    });
+    for (std::size_t r = 0; r < regions.size(); ++r) {
+      out.open_fragments += slots[r].stats.open_fragments;
+      for (OffsetLoop& l : slots[r].loops) {
+        for (std::uint32_t& p : l.parents)
+          p = static_cast<std::uint32_t>(prev_start + regions[r][p]);
         out.loops.push_back({std::move(l), level});
       }
     }

@@ -10,6 +10,7 @@
 // counter-clockwise holes inside it); the next level of each region depends on that region
 // only, so callers may offset regions in parallel (engine/pocket_offset.hpp does).
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "kernels/pocket/offset.hpp"
@@ -33,8 +34,16 @@ struct OffsetLevels {
   std::uint64_t open_fragments = 0;    // summed over all levels (0 when all is well)
 };
 
-// Single-threaded. input: closed loops, material on the right. Stops after max_levels.
+// Runs task(i) for every i in [0, n); tasks are independent and write only their own slot.
+// The default runs them in order on the calling thread (kernels own no threads); the engine
+// passes its parallel for_each.
+using ForEach = std::function<void(std::size_t n, const std::function<void(std::size_t)>& task)>;
+void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& task);
+
+// input: closed loops, material on the right. Stops after max_levels. Output is the same
+// whatever `for_each` runs the regions with.
 OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first,
-                           double step, std::uint32_t max_levels = 1000000);
+                           double step, std::uint32_t max_levels = 1000000,
+                           const ForEach& for_each = sequential_for_each);
 
 }  // namespace ncpath

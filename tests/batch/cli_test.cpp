@@ -138,6 +138,42 @@ TEST(Cli, BadCommandLinesAreRejectedWithTheKey) {
   EXPECT_NE(r.output.find("absent.toml"), std::string::npos);
 }
 
+TEST(Cli, OffsetWritesLoopsLevelsAndGraph) {
+  const auto dir = fixture_dir();
+  // 100 x 60 rectangle with a circular island of radius 5 at (50, 30), written by hand.
+  std::ofstream(dir / "pocket.toml") << R"(
+[[loop]]
+segments = [ { line = [[0, 0], [100, 0]] }, { line_to = [100, 60] }, { line_to = [0, 60] },
+             { line_to = [0, 0] } ]
+[[circle]]
+center = [50, 30]
+radius = 5
+)";
+  const CmdResult r = ncpath("offset --profile " + (dir / "pocket.toml").string() +
+                             " --tool flat:6 --stepover 50% --depth 2 --quiet --out " +
+                             (dir / "off.h5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "off.h5");
+  const auto level = h5::read_all<std::int64_t>(f, "/jobs/offset/offset/loop_level", H5T_NATIVE_INT64);
+  const auto area = h5::read_all<double>(f, "/jobs/offset/offset/loop_area", H5T_NATIVE_DOUBLE);
+  ASSERT_GE(level.size(), 2u);
+  // Level 1 at d = 3: the rectangle 94 x 54 and the island grown to radius 8.
+  EXPECT_EQ(level[0], 1);
+  EXPECT_NEAR(area[0] + area[1], -94.0 * 54.0 + M_PI * 64, 1e-6);
+  const auto pts = h5::read_all<double>(f, "/jobs/offset/cl/points", H5T_NATIVE_DOUBLE);
+  EXPECT_EQ(pts[2], -2.0);  // written at the depth
+  const auto edges = h5::read_all<std::int64_t>(f, "/jobs/offset/offset/ogh_edges", H5T_NATIVE_INT64);
+  EXPECT_GT(edges.size(), 0u);
+  for (std::size_t k = 0; k + 1 < edges.size(); k += 2)
+    EXPECT_EQ(level[edges[k]], level[edges[k + 1]] + 1);  // a parent is one level up
+  // A profile that does not close is reported with the entity.
+  std::ofstream(dir / "open.toml") << "[[polyline]]\npoints = [[0,0],[10,0],[10,10]]\n";
+  const CmdResult bad = ncpath("offset --profile " + (dir / "open.toml").string() +
+                               " --tool flat:6 --stepover 2 --quiet --out " + (dir / "bad.h5").string());
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("invalid_input"), std::string::npos) << bad.output;
+}
+
 TEST(Cli, HelpDocumentsEveryOption) {
   const CmdResult top = ncpath("--help");
   for (const char* s : {"raster", "drop", "run"})
@@ -148,6 +184,10 @@ TEST(Cli, HelpDocumentsEveryOption) {
                         "--floor-z", "--fit-xy", "--scale", "--translate", "--quiet"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
   EXPECT_NE(ncpath("drop --help").output.find("--points"), std::string::npos);
+  const CmdResult o = ncpath("offset --help");
+  for (const char* s : {"--profile", "--stepover", "--stock", "--depth", "--tolerance",
+                        "--join-tolerance", "--tool", "--out"})
+    EXPECT_NE(o.output.find(s), std::string::npos) << s;
 }
 
 }  // namespace

@@ -1,0 +1,119 @@
+#include "batch/jobs/offset_job.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "batch/io/dxf_reader.hpp"
+#include "batch/io/profile_toml.hpp"
+#include "engine/pocket_offset.hpp"
+#include "engine/run_control.hpp"
+#include "kernels/pocket/chain.hpp"
+
+namespace ncpath::jobs {
+
+namespace {
+
+std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+
+io::ProfileSoup read_profile(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".dxf") return io::read_dxf(path);
+  if (ext == ".toml") return io::read_profile_toml(path);
+  throw io::ReadError(path, "", "unknown profile format '" + ext +
+                                    "' (expected .dxf or .toml, see docs/profile-format.md)");
+}
+
+}  // namespace
+
+OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
+                                std::vector<out::StatValue>& stats) {
+  OffsetJobSummary summary;
+  Stopwatch read_clock;
+  const io::ProfileSoup soup = read_profile(job.input);
+  const ChainResult chained =
+      chain_and_nest(soup.curves, soup.nurbs, soup.sources, job.offset.join_tolerance);
+  if (!chained.error.empty())
+    throw io::ReadError(job.input, "", chained.error);
+  stats.push_back({"profile_curves", i64(soup.curves.size()), ""});
+  stats.push_back({"zero_length_dropped", i64(soup.zero_length_dropped), ""});
+  stats.push_back({"warnings", i64(soup.warnings.size()), ""});
+  stats.push_back({"largest_gap_closed", chained.largest_gap_closed, "mm"});
+  stats.push_back({"regions", i64(chained.regions.size()), ""});
+  stats.push_back({"read_s", read_clock.seconds(), "s"});
+
+  Stopwatch compute_clock;
+  PocketOffsetParams p;
+  p.tool_radius = job.tool.radius;
+  p.stepover = job.offset.stepover;
+  p.stock = job.offset.stock;
+  p.tolerance = job.offset.tolerance;
+  const PocketOffsetResult res = offset_pocket(chained.regions, p);
+  summary.compute_s = compute_clock.seconds();
+
+  Stopwatch write_clock;
+  // Exact loops: segments (CSR by loop), level, signed area, region; OGH edges.
+  std::vector<std::uint8_t> kind;
+  std::vector<double> xy, radius, area;
+  std::vector<std::int64_t> seg_offsets{0}, level, region, edges;
+  std::vector<double> cl_xyz;
+  std::vector<std::uint8_t> contact;
+  std::vector<std::uint32_t> path_sizes;
+  std::vector<std::uint8_t> path_kinds;
+  std::vector<Vec2> poly;
+  std::uint64_t segments = 0;
+  for (std::size_t l = 0; l < res.loops.size(); ++l) {
+    const PocketLoop& pl = res.loops[l];
+    poly.clear();
+    for (const Seg2& s : pl.loop.segs) {
+      kind.push_back(static_cast<std::uint8_t>(s.kind));
+      xy.insert(xy.end(), {s.a.x(), s.a.y(), s.b.x(), s.b.y(), s.c.x(), s.c.y()});
+      radius.push_back(s.is_arc() ? s.r : 0.0);
+      append_polyline(s, job.offset.tolerance, poly);
+    }
+    segments += pl.loop.segs.size();
+    seg_offsets.push_back(static_cast<std::int64_t>(segments));
+    level.push_back(pl.level);
+    region.push_back(pl.region);
+    area.push_back(pl.loop.area2 / 2);
+    for (std::uint32_t parent : pl.loop.parents) edges.insert(edges.end(), {i64(l), i64(parent)});
+    poly.push_back(pl.loop.segs.front().a);  // closed path
+    for (const Vec2& q : poly) cl_xyz.insert(cl_xyz.end(), {q.x(), q.y(), -job.offset.depth});
+    contact.insert(contact.end(), poly.size(), 0);
+    path_sizes.push_back(static_cast<std::uint32_t>(poly.size()));
+    path_kinds.push_back(static_cast<std::uint8_t>(PathKind::kCut));
+  }
+  cl.append_paths(cl_xyz, contact, path_sizes, path_kinds);
+  cl.write_array("offset", "seg_kind", std::span<const std::uint8_t>(kind), 0, "",
+                 "0=line,1=arc_ccw,2=arc_cw");
+  cl.write_array("offset", "seg_points", std::span<const double>(xy), 6, "mm",
+                 "start x, start y, end x, end y, centre x, centre y (centre: arcs only)");
+  cl.write_array("offset", "seg_radius", std::span<const double>(radius), 0, "mm",
+                 "arc radius, 0 for lines");
+  cl.write_array("offset", "loop_offsets", std::span<const std::int64_t>(seg_offsets), 0, "",
+                 "loop k is segments [loop_offsets[k], loop_offsets[k+1])");
+  cl.write_array("offset", "loop_level", std::span<const std::int64_t>(level), 0, "",
+                 "1 = tool radius + stock from the profile, +1 per stepover");
+  cl.write_array("offset", "loop_region", std::span<const std::int64_t>(region), 0, "",
+                 "input region (pocket) the loop belongs to");
+  cl.write_array("offset", "loop_area", std::span<const double>(area), 0, "mm^2",
+                 "signed area: < 0 clockwise (material inside), > 0 counter-clockwise (hole)");
+  cl.write_array("offset", "ogh_edges", std::span<const std::int64_t>(edges), 2, "",
+                 "offset generation history: (child loop, parent loop) pairs");
+  const double write_s = write_clock.seconds();
+
+  summary.points = cl_xyz.size() / 3;
+  stats.push_back({"loops", i64(res.loops.size()), ""});
+  stats.push_back({"levels", i64(res.levels), ""});
+  stats.push_back({"segments", i64(segments), ""});
+  stats.push_back({"ogh_edges", i64(edges.size() / 2), ""});
+  stats.push_back({"open_fragments", i64(res.open_fragments), ""});
+  stats.push_back({"points", i64(summary.points), ""});
+  stats.push_back({"compute_s", summary.compute_s, "s"});
+  stats.push_back({"write_s", write_s, "s"});
+  return summary;
+}
+
+}  // namespace ncpath::jobs

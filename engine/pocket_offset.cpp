@@ -1,0 +1,56 @@
+#include "engine/pocket_offset.hpp"
+
+#include <algorithm>
+
+#include "engine/parallel.hpp"
+#include "kernels/curves/nurbs.hpp"
+
+namespace ncpath {
+
+std::vector<Seg2> profile_segments(const Profile& profile, double tolerance) {
+  std::vector<Seg2> out;
+  for (const ProfileCurve& c : profile.curves) {
+    if (c.nurbs < 0) {
+      out.push_back(c.seg);
+      continue;
+    }
+    std::vector<Seg2> arcs =
+        nurbs_to_arcs(profile.nurbs[static_cast<std::size_t>(c.nurbs)], tolerance, c.seg.source);
+    // Keep the chain exact at the joints with the neighbouring curves.
+    if (!arcs.empty()) {
+      arcs.front().a = c.seg.a;
+      arcs.back().b = c.seg.b;
+    }
+    out.insert(out.end(), arcs.begin(), arcs.end());
+  }
+  return out;
+}
+
+PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
+                                 const PocketOffsetParams& p) {
+  std::vector<OffsetLevels> per_region(regions.size());
+  const ForEach parallel = [](std::size_t n, const std::function<void(std::size_t)>& task) {
+    par::for_each(n, 1, task);
+  };
+  par::for_each(regions.size(), 1, [&](std::size_t r) {
+    std::vector<std::vector<Seg2>> loops;
+    loops.push_back(profile_segments(regions[r].boundary, p.tolerance));
+    for (const Profile& island : regions[r].islands)
+      loops.push_back(profile_segments(island, p.tolerance));
+    per_region[r] = offset_levels(loops, p.tool_radius + p.stock, p.stepover, p.max_levels,
+                                  parallel);
+  });
+  PocketOffsetResult out;
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    const auto base = static_cast<std::uint32_t>(out.loops.size());
+    out.open_fragments += per_region[r].open_fragments;
+    for (LevelLoop& l : per_region[r].loops) {
+      for (std::uint32_t& parent : l.loop.parents) parent += base;
+      out.levels = std::max(out.levels, l.level);
+      out.loops.push_back({std::move(l.loop), static_cast<std::uint32_t>(r), l.level});
+    }
+  }
+  return out;
+}
+
+}  // namespace ncpath

@@ -1,0 +1,43 @@
+#pragma once
+// Multi-level contour-parallel offsets of pocket regions (boundary + islands), the input of
+// pocket tool paths: level 1 at the tool radius plus stock to leave, then one level per
+// stepover until nothing is left, with the offset generation history (parents).
+//
+// Input regions are independent (parallel tasks); within a level, the independent
+// sub-regions of a region are parallel tasks too (kernels/pocket/offset_levels.hpp). Output
+// order does not depend on the thread count.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/pocket/offset_levels.hpp"
+#include "kernels/pocket/profile.hpp"
+
+namespace ncpath {
+
+struct PocketOffsetParams {
+  double tool_radius = 3;    // mm
+  double stepover = 1;       // mm between levels
+  double stock = 0;          // mm left on walls and islands
+  double tolerance = 0.01;   // mm: NURBS curves become arcs within this
+  std::uint32_t max_levels = 100000;
+};
+
+struct PocketLoop {
+  OffsetLoop loop;           // loop.parents: indices into PocketOffsetResult::loops
+  std::uint32_t region = 0;  // input region
+  std::uint32_t level = 0;   // 1 = at tool radius + stock
+};
+
+struct PocketOffsetResult {
+  std::vector<PocketLoop> loops;  // region by region, level by level
+  std::uint64_t open_fragments = 0;
+  std::uint32_t levels = 0;       // deepest level reached
+};
+
+// Lines and arcs of a profile, NURBS curves replaced by arcs within `tolerance`.
+std::vector<Seg2> profile_segments(const Profile& profile, double tolerance);
+
+PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
+                                 const PocketOffsetParams& params);
+
+}  // namespace ncpath

@@ -1,0 +1,108 @@
+// Independent oracle: the area inside the exact offset loops equals the area of the region
+// eroded by d as Clipper (Debian's libpolyclipping, used only in tests) computes it on a
+// finely discretised copy of the input, within a bound that follows from the
+// discretisation.
+#include <gtest/gtest.h>
+
+#include <clipper.hpp>
+#include <numbers>
+#include <random>
+
+#include "kernels/pocket/offset.hpp"
+#include "tests/support/shapes2d.hpp"
+
+namespace ncpath {
+namespace {
+
+constexpr double kScale = 1e6;   // Clipper works in integers: 1 unit = 1 nm
+constexpr double kChord = 1e-4;  // mm: discretisation of arcs for Clipper
+
+ClipperLib::Path to_path(const std::vector<Seg2>& loop) {
+  ClipperLib::Path path;
+  std::vector<Vec2> pts;
+  for (const Seg2& s : loop) append_polyline(s, kChord, pts);
+  for (const Vec2& p : pts)
+    path.emplace_back(static_cast<ClipperLib::cInt>(std::llround(p.x() * kScale)),
+                      static_cast<ClipperLib::cInt>(std::llround(p.y() * kScale)));
+  return path;
+}
+
+double clipper_eroded_area(const std::vector<std::vector<Seg2>>& loops, double d) {
+  ClipperLib::Paths in;
+  for (const auto& l : loops) in.push_back(to_path(l));
+  // Union first (orientation-independent), then offset the result inwards.
+  ClipperLib::Clipper c;
+  c.AddPaths(in, ClipperLib::ptSubject, true);
+  ClipperLib::Paths region;
+  c.Execute(ClipperLib::ctUnion, region, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  ClipperLib::ClipperOffset off;
+  off.ArcTolerance = kChord * kScale;
+  off.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
+  ClipperLib::Paths out;
+  off.Execute(out, -d * kScale);
+  double a = 0;
+  for (const auto& p : out) a += ClipperLib::Area(p);
+  return a / (kScale * kScale);
+}
+
+double exact_area(const OffsetResult& r) {
+  double a = 0;
+  for (const OffsetLoop& l : r.loops) a += -l.area2 / 2;  // pockets are clockwise
+  return a;
+}
+
+// Region of the input: our loops are clockwise boundaries and counter-clockwise islands;
+// Clipper's union with the non-zero rule needs the islands as holes, i.e. opposite to the
+// boundary: reverse everything so the boundary is counter-clockwise.
+std::vector<std::vector<Seg2>> for_clipper(const std::vector<std::vector<Seg2>>& loops) {
+  std::vector<std::vector<Seg2>> out;
+  for (const auto& l : loops) {
+    std::vector<Seg2> r;
+    for (auto it = l.rbegin(); it != l.rend(); ++it) r.push_back(reversed(*it));
+    out.push_back(r);
+  }
+  return out;
+}
+
+void expect_matches_clipper(const std::vector<std::vector<Seg2>>& loops, double d) {
+  double perimeter = 0;
+  for (const auto& l : loops) perimeter += loop_length(l);
+  const OffsetResult r = offset_loops(loops, d);
+  EXPECT_EQ(r.stats.open_fragments, 0u);
+  const double oracle = clipper_eroded_area(for_clipper(loops), d);
+  // Chords of kChord inside arcs on both sides, plus integer rounding: a band of a few
+  // kChord along the boundary.
+  const double bound = 4 * kChord * perimeter + 1e-6;
+  EXPECT_NEAR(exact_area(r), oracle, bound) << "d = " << d;
+}
+
+TEST(OffsetVsClipper, RoundedRectangleWithIslands) {
+  const std::vector<std::vector<Seg2>> loops = {
+      test::rounded_rectangle(0, 0, 150, 90, 12, true), test::circle({40, 45}, 10, false),
+      test::rectangle(90, 20, 110, 70, false), test::circle({130, 20}, 4, false)};
+  for (double d : {1.0, 4.5, 9.0, 14.0, 21.0, 30.0}) expect_matches_clipper(loops, d);
+}
+
+// Random star-shaped pockets of lines and arcs (bulges), with a random island.
+TEST(OffsetVsClipper, RandomBulgePolygons) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> R(40, 60), B(-0.3, 0.3), U(0, 1);
+  for (int trial = 0; trial < 12; ++trial) {
+    const int n = 5 + trial;
+    std::vector<Vec2> pts;
+    for (int k = 0; k < n; ++k) {
+      const double a = -2 * std::numbers::pi * (k + 0.3 * U(rng)) / n;  // clockwise
+      const double r = R(rng);
+      pts.emplace_back(r * std::cos(a), r * std::sin(a));
+    }
+    std::vector<Seg2> loop;
+    for (int k = 0; k < n; ++k)
+      loop.push_back(make_bulge_segment(pts[k], pts[(k + 1) % n], B(rng)));
+    std::vector<std::vector<Seg2>> loops = {loop};
+    if (trial % 2 == 0) loops.push_back(test::circle({5 * U(rng), 5 * U(rng)}, 6, false));
+    for (double d : {2.0, 7.5, 15.0}) expect_matches_clipper(loops, d);
+  }
+}
+
+}  // namespace
+}  // namespace ncpath
