@@ -10,10 +10,10 @@ namespace {
 
 inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
-// Candidate point p lies on s (within eps)? Writes its parameter.
-bool on_segment(const Seg2& s, const Vec2& p, double eps, double& t) {
+// Candidate point p lies on s (within eps)? Writes its parameter when asked.
+bool on_segment(const Seg2& s, const Vec2& p, double eps, bool want, double& t) {
   if (distance(s, p) > eps) return false;
-  t = parameter_of(s, p);
+  t = want ? parameter_of(s, p) : 0.0;
   return true;
 }
 
@@ -93,7 +93,7 @@ Seg2 sub_segment(const Seg2& s, const Vec2& from, const Vec2& to) {
   return r;
 }
 
-int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps) {
+int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps, bool want_params) {
   int n = 0;
   Vec2 cand[4];
   int nc = 0;
@@ -123,7 +123,8 @@ int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps) {
   }
   for (int k = 0; k < nc; ++k) {
     double t0, t1;
-    if (on_segment(s0, cand[k], eps, t0) && on_segment(s1, cand[k], eps, t1))
+    if (on_segment(s0, cand[k], eps, want_params, t0) &&
+        on_segment(s1, cand[k], eps, want_params, t1))
       n = add_hit(hits, n, cand[k], t0, t1, eps);
   }
   return n;

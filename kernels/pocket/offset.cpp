@@ -21,13 +21,46 @@ struct RawSeg {
   bool connector;  // a line joining offsets that miss each other: not itself an offset
 };
 
+// Consecutive segments `first` and `second` share the joint first.b == second.a. False
+// when they cannot meet anywhere else, decided without computing intersections: two lines
+// only meet again when they fold back on each other; a line and a circle through the joint
+// meet at one more point, the reflection of the joint along the line; two circles through
+// the joint meet at its mirror image across the line of centres.
+bool adjacent_may_cross(const Seg2& first, const Seg2& second) {
+  const Vec2& p = first.b;
+  if (!first.is_arc() && !second.is_arc())
+    return (first.b - first.a).dot(second.b - second.a) < 0;
+  Vec2 q;
+  if (first.is_arc() != second.is_arc()) {
+    const Seg2& arc = first.is_arc() ? first : second;
+    const Seg2& line = first.is_arc() ? second : first;
+    const Vec2 d = line.b - line.a;
+    const double l2 = d.squaredNorm();
+    if (l2 == 0) return false;
+    // Second point of the line through p on the circle: p + s d, s = -2 (p - c).d / |d|^2.
+    q = p - (2 * (p - arc.c).dot(d) / l2) * d;
+  } else {
+    const Vec2 u = second.c - first.c;
+    const double l2 = u.squaredNorm();
+    if (l2 == 0) return true;  // concentric through one point: the same circle, let it be
+    const Vec2 w = p - first.c;
+    q = first.c + (2 * w.dot(u) / l2) * u - w;  // mirror of p across the centre line
+  }
+  if ((q - p).norm() <= tol::kOffsetJoint) return false;
+  return distance(first, q) <= tol::kOffsetJoint && distance(second, q) <= tol::kOffsetJoint;
+}
+
 // Moves an end of s to p (end = true: s.b, else s.a). An arc whose new end lands just
 // behind its other end would turn the long way round the circle; such a sliver becomes the
 // straight piece it really is.
 void move_end(Seg2& s, const Vec2& p, bool end) {
+  if (!s.is_arc() || arc_contains_angle(s, p)) {  // the common case: no trigonometry
+    (end ? s.b : s.a) = p;
+    return;
+  }
   const double before = std::abs(sweep(s));
   (end ? s.b : s.a) = p;
-  if (s.is_arc() && std::abs(sweep(s)) > before + 1e-6) s.kind = SegKind::kLine;
+  if (std::abs(sweep(s)) > before + 1e-6) s.kind = SegKind::kLine;
 }
 
 // Crossing of the unbounded carriers of two segments (lines, full circles) nearest to v.
@@ -336,15 +369,17 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     active.resize(keep);
     for (const std::uint32_t j : active) {
       if (box[j].lo.y() > box[i].hi.y() || box[j].hi.y() < box[i].lo.y()) continue;
+      if (raw[i].next == j && !adjacent_may_cross(raw[i].s, raw[j].s)) continue;
+      if (raw[i].prev == j && !adjacent_may_cross(raw[j].s, raw[i].s)) continue;
       SegHit hits[2];
-      const int h = intersect(raw[i].s, raw[j].s, hits, eps);
+      const int h = intersect(raw[i].s, raw[j].s, hits, eps, false);
       for (int k = 0; k < h; ++k) {
         const Vec2& p = hits[k].p;
         // The joint shared with a neighbour is not a crossing.
         if (raw[i].next == j && (p - raw[i].s.b).norm() <= tol::kOffsetJoint) continue;
         if (raw[i].prev == j && (p - raw[i].s.a).norm() <= tol::kOffsetJoint) continue;
-        splits[i].push_back({hits[k].t0, p});
-        splits[j].push_back({hits[k].t1, p});
+        splits[i].push_back({parameter_of(raw[i].s, p), p});
+        splits[j].push_back({parameter_of(raw[j].s, p), p});
         crossed[raw[i].loop] = crossed[raw[j].loop] = 1;
         ++res.stats.intersections;
       }
@@ -393,10 +428,11 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
   // otherwise - no distance test needed. Pieces of loops that cross something are tested
   // against the input curves.
   std::vector<double> crude_area2(loops.size(), 0.0);
-  for (const RawSeg& r : raw) crude_area2[r.loop] += area2_contribution(r.s);
+  for (const RawSeg& r : raw)
+    if (!crossed[r.loop]) crude_area2[r.loop] += area2_contribution(r.s);
   std::vector<std::uint8_t> same_way(loops.size());
   for (std::size_t l = 0; l < loops.size(); ++l)
-    same_way[l] = (crude_area2[l] < 0) == (loop_area2(loops[l]) < 0);
+    if (!crossed[l]) same_way[l] = (crude_area2[l] < 0) == (loop_area2(loops[l]) < 0);
   std::vector<Seg2> input;
   for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
   std::optional<SegGrid> grid;
