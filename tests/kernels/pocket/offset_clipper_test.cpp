@@ -9,6 +9,7 @@
 #include <random>
 
 #include "kernels/pocket/offset.hpp"
+#include "kernels/pocket/offset_levels.hpp"
 #include "tests/support/shapes2d.hpp"
 
 namespace ncpath {
@@ -17,26 +18,27 @@ namespace {
 constexpr double kScale = 1e6;   // Clipper works in integers: 1 unit = 1 nm
 constexpr double kChord = 1e-4;  // mm: discretisation of arcs for Clipper
 
-ClipperLib::Path to_path(const std::vector<Seg2>& loop) {
+ClipperLib::Path to_path(const std::vector<Seg2>& loop, double chord) {
   ClipperLib::Path path;
   std::vector<Vec2> pts;
-  for (const Seg2& s : loop) append_polyline(s, kChord, pts);
+  for (const Seg2& s : loop) append_polyline(s, chord, pts);
   for (const Vec2& p : pts)
     path.emplace_back(static_cast<ClipperLib::cInt>(std::llround(p.x() * kScale)),
                       static_cast<ClipperLib::cInt>(std::llround(p.y() * kScale)));
   return path;
 }
 
-double clipper_eroded_area(const std::vector<std::vector<Seg2>>& loops, double d) {
+double clipper_eroded_area(const std::vector<std::vector<Seg2>>& loops, double d,
+                           double chord = kChord) {
   ClipperLib::Paths in;
-  for (const auto& l : loops) in.push_back(to_path(l));
+  for (const auto& l : loops) in.push_back(to_path(l, chord));
   // Union first (orientation-independent), then offset the result inwards.
   ClipperLib::Clipper c;
   c.AddPaths(in, ClipperLib::ptSubject, true);
   ClipperLib::Paths region;
   c.Execute(ClipperLib::ctUnion, region, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
   ClipperLib::ClipperOffset off;
-  off.ArcTolerance = kChord * kScale;
+  off.ArcTolerance = chord * kScale;
   off.AddPaths(region, ClipperLib::jtRound, ClipperLib::etClosedPolygon);
   ClipperLib::Paths out;
   off.Execute(out, -d * kScale);
@@ -101,6 +103,52 @@ TEST(OffsetVsClipper, RandomBulgePolygons) {
     std::vector<std::vector<Seg2>> loops = {loop};
     if (trial % 2 == 0) loops.push_back(test::circle({5 * U(rng), 5 * U(rng)}, 6, false));
     for (double d : {2.0, 7.5, 15.0}) expect_matches_clipper(loops, d);
+  }
+}
+
+// Levels of the issue-3 benchmark shape (fewer segments): every level closes, and the area
+// at sampled levels equals Clipper's erosion of the input by the summed distance. With
+// amplitude 10 the lobe tips have radius 2.9 mm, so arcs collapse after a few levels.
+TEST(OffsetVsClipper, WaveLoopAllLevels) {
+  for (double amplitude : {8.85, 10.0}) {
+    auto wave = [&](double t) {
+      const double r = 100 + amplitude * std::sin(20 * t);
+      return Vec2(r * std::cos(t), r * std::sin(t));
+    };
+    const int n = 2000;
+    std::vector<Seg2> loop;
+    for (int k = 0; k < n; ++k) {  // clockwise: t decreasing; lines and bulge arcs alternate
+      const double t0 = 2 * std::numbers::pi * (n - k) / n;
+      const double t1 = 2 * std::numbers::pi * (n - k - 1) / n;
+      const Vec2 a = k == 0 ? wave(0) : loop.back().b;
+      const Vec2 b = k + 1 == n ? wave(0) : wave(t1);
+      if (k % 2 == 0) {
+        loop.push_back(make_line(a, b));
+      } else {
+        // Arc through the curve's midpoint: bulge from the sagitta.
+        const Vec2 m = wave(0.5 * (t0 + t1));
+        const Vec2 ab = b - a;
+        const double h = ((m - a).x() * ab.y() - (m - a).y() * ab.x()) / ab.norm();  // right
+        loop.push_back(make_bulge_segment(a, b, -2 * h / ab.norm()));
+      }
+    }
+    const std::vector<std::vector<Seg2>> in = {loop};
+    const OffsetLevels lv = offset_levels(in, 0.5, 0.5);
+    EXPECT_EQ(lv.open_fragments, 0u) << amplitude;
+    EXPECT_GT(lv.level_start.size(), 170u) << amplitude;
+    const double chord = 2e-3;  // coarser: this shape is large
+    for (std::size_t level = 1; level <= lv.level_start.size(); level += 60) {
+      const std::size_t b = level == 1 ? 0 : lv.level_start[level - 2];
+      const std::size_t e = lv.level_start[level - 1];
+      double area = 0, perimeter = 0;
+      for (std::size_t k = b; k < e; ++k) {
+        area += -lv.loops[k].loop.area2 / 2;
+        perimeter += loop_length(lv.loops[k].loop.segs);
+      }
+      const double oracle = clipper_eroded_area(for_clipper(in), 0.5 * level, chord);
+      EXPECT_NEAR(area, oracle, 4 * chord * (perimeter + loop_length(loop)) + 1e-6)
+          << "amplitude " << amplitude << " level " << level;
+    }
   }
 }
 
