@@ -145,6 +145,22 @@ void append_polyline(const Seg2& s, double chordal_tol, std::vector<Vec2>& out) 
   for (int k = 1; k < n; ++k) out.push_back(point_at(s, static_cast<double>(k) / n));
 }
 
+void loose_bounds(const Seg2& s, Vec2& lo, Vec2& hi) {
+  lo = s.a.cwiseMin(s.b);
+  hi = s.a.cwiseMax(s.b);
+  if (!s.is_arc()) return;
+  const double half = 0.5 * (s.b - s.a).norm();
+  if (cross(s.a - s.c, s.b - s.c) * s.turn() > 0 && half < s.r) {
+    // Minor arc: it stays within its sagitta of the chord.
+    const double sag = s.r - std::sqrt(s.r * s.r - half * half);
+    lo.array() -= sag;
+    hi.array() += sag;
+  } else {
+    lo = lo.cwiseMin(s.c - Vec2::Constant(s.r));
+    hi = hi.cwiseMax(s.c + Vec2::Constant(s.r));
+  }
+}
+
 Seg2 reversed(const Seg2& s) {
   Seg2 r = s;
   std::swap(r.a, r.b);

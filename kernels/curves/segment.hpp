@@ -57,6 +57,9 @@ bool arc_contains_angle(const Seg2& s, const Vec2& p);
 // Points along s from s.a (included) to s.b (excluded) such that the chords stay within
 // chordal_tol of the segment (mm); appended to out.
 void append_polyline(const Seg2& s, double chordal_tol, std::vector<Vec2>& out);
+// A box that contains the segment, cheaper than bounds() for arcs (no angle tests): minor
+// arcs get the end points' box grown by their sagitta, others their circle's box.
+void loose_bounds(const Seg2& s, Vec2& lo, Vec2& hi);
 // Reversed segment (b to a, opposite turn).
 Seg2 reversed(const Seg2& s);
 

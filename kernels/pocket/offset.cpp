@@ -150,10 +150,11 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
 // The crude offset loop of one input loop, appended to raw.
 void crude_loop(const std::vector<Seg2>& in, double d, std::uint32_t loop_id,
                 std::vector<RawSeg>& raw) {
-  std::vector<Seg2> segs;  // offsets and joins, in order
-  std::vector<bool> connector;
-  std::vector<Vec2> vertex;  // vertex[k]: the input vertex before offsets[k]
+  // Raw offsets, each with the input vertex it starts from.
   std::vector<Seg2> offs;
+  std::vector<Vec2> vertex;
+  offs.reserve(in.size());
+  vertex.reserve(in.size());
   for (const Seg2& s : in) {
     Seg2 o;
     if (raw_offset(s, d, o)) {
@@ -163,23 +164,23 @@ void crude_loop(const std::vector<Seg2>& in, double d, std::uint32_t loop_id,
   }
   if (offs.empty()) return;
   const std::size_t n = offs.size();
-  // Trim/join each consecutive pair (including last -> first) before emitting, so trims
-  // at both ends of a segment are applied.
-  std::vector<std::vector<Seg2>> joins(n);
-  for (std::size_t k = 0; k < n; ++k) join(offs[k], offs[(k + 1) % n], vertex[(k + 1) % n], joins[k]);
-  // join() of the last pair may have moved offs[0].a; re-snap the first pair's joint.
-  for (std::size_t k = 0; k < n; ++k) {
-    segs.push_back(offs[k]);
-    connector.push_back(false);
-    for (const Seg2& j : joins[k]) {
-      segs.push_back(j);
-      connector.push_back(!j.is_arc());  // join arcs are true offsets (of a vertex)
-    }
-  }
+  // Join each consecutive pair; an offset is emitted once both its ends are settled. The
+  // last join (back to the first offset) may still move the first offset's start: the
+  // emitted copy is patched afterwards.
   const auto base = static_cast<std::uint32_t>(raw.size());
-  const auto m = static_cast<std::uint32_t>(segs.size());
-  for (std::uint32_t k = 0; k < m; ++k)
-    raw.push_back({segs[k], loop_id, base + (k + m - 1) % m, base + (k + 1) % m, connector[k]});
+  std::vector<Seg2> joins;
+  for (std::size_t k = 0; k < n; ++k) {
+    joins.clear();
+    join(offs[k], offs[(k + 1) % n], vertex[(k + 1) % n], joins);
+    raw.push_back({offs[k], loop_id, 0, 0, false});
+    for (const Seg2& js : joins) raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
+  }
+  raw[base].s = offs[0];
+  const auto m = static_cast<std::uint32_t>(raw.size() - base);
+  for (std::uint32_t k = 0; k < m; ++k) {
+    raw[base + k].prev = base + (k + m - 1) % m;
+    raw[base + k].next = base + (k + 1) % m;
+  }
 }
 
 struct Box {
@@ -194,7 +195,7 @@ class SegGrid {
     Vec2 hi = Vec2::Constant(-1e300);
     boxes_.resize(segs.size());
     for (std::size_t i = 0; i < segs.size(); ++i) {
-      bounds(segs[i], boxes_[i].lo, boxes_[i].hi);
+      loose_bounds(segs[i], boxes_[i].lo, boxes_[i].hi);
       lo_ = lo_.cwiseMin(boxes_[i].lo);
       hi = hi.cwiseMax(boxes_[i].hi);
     }
@@ -230,7 +231,7 @@ class SegGrid {
   // True when some segment comes closer to s than limit.
   bool any_closer(const Seg2& s, double limit) {
     Vec2 lo, hi;
-    bounds(s, lo, hi);
+    loose_bounds(s, lo, hi);
     lo.array() -= limit;
     hi.array() += limit;
     int x0, y0, x1, y1;
@@ -350,7 +351,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
   // Dissection: all intersections, by a sweep over x.
   std::vector<Box> box(n);
   for (std::size_t i = 0; i < n; ++i) {
-    bounds(raw[i].s, box[i].lo, box[i].hi);
+    loose_bounds(raw[i].s, box[i].lo, box[i].hi);
     box[i].lo.array() -= eps;
     box[i].hi.array() += eps;
   }
