@@ -106,6 +106,41 @@ TEST(OffsetVsClipper, RandomBulgePolygons) {
   }
 }
 
+// Robustness cases of issue 3: tangent islands, an island touching the boundary, a
+// near-full arc, a run of nearly equal arcs. Each must close and match Clipper.
+TEST(OffsetVsClipper, TangentIslandsAndIslandOnBoundary) {
+  const std::vector<std::vector<Seg2>> tangent = {
+      test::rectangle(0, 0, 100, 60, true), test::circle({40, 30}, 5, false),
+      test::circle({50, 30}, 5, false)};  // the islands touch at (45, 30)
+  for (double d : {0.5, 2.0, 6.0}) expect_matches_clipper(tangent, d);
+  const std::vector<std::vector<Seg2>> touching = {
+      test::rectangle(0, 0, 100, 60, true), test::circle({50, 8}, 8, false)};  // touches y = 0
+  for (double d : {0.5, 3.0, 12.0}) expect_matches_clipper(touching, d);
+}
+
+TEST(OffsetVsClipper, NearFullArcAndNearlyEqualArcs) {
+  // A "D": an arc of 359.8 degrees closed by its short chord.
+  const double a0 = 0.1 * std::numbers::pi / 180;
+  const Vec2 p(30 * std::cos(a0), 30 * std::sin(a0)), q(30 * std::cos(-a0), 30 * std::sin(-a0));
+  const std::vector<Seg2> d_shape = {make_arc(p, q, {0, 0}, true), make_line(q, p)};
+  std::vector<Seg2> cw;
+  for (auto it = d_shape.rbegin(); it != d_shape.rend(); ++it) cw.push_back(reversed(*it));
+  for (double d : {0.5, 5.0, 20.0}) expect_matches_clipper({cw}, d);
+  // A circle of radius 40 made of 90 arcs whose centres wander by 1e-9 mm.
+  std::vector<Seg2> wobbly;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> J(-1e-9, 1e-9);
+  Vec2 start(40, 0), prev = start;
+  for (int k = 1; k <= 90; ++k) {
+    const double a = -2 * std::numbers::pi * k / 90;  // clockwise
+    const Vec2 c(J(rng), J(rng));
+    const Vec2 next = k == 90 ? start : Vec2(40 * std::cos(a), 40 * std::sin(a));
+    wobbly.push_back(make_arc(prev, next, c, false));
+    prev = next;
+  }
+  for (double d : {0.5, 10.0, 39.0}) expect_matches_clipper({wobbly}, d);
+}
+
 // Levels of the issue-3 benchmark shape (fewer segments): every level closes, and the area
 // at sampled levels equals Clipper's erosion of the input by the summed distance. With
 // amplitude 10 the lobe tips have radius 2.9 mm, so arcs collapse after a few levels.
