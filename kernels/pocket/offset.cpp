@@ -190,7 +190,9 @@ struct Box {
 // Uniform grid of segment ids over their boxes (for distance validation).
 class SegGrid {
  public:
-  SegGrid(const std::vector<Seg2>& segs, double cell) : segs_(segs) {
+  // Cells of at least min_cell, and about two segments' worth of area each: a finer grid
+  // costs more to build than the few queries it serves save.
+  SegGrid(const std::vector<Seg2>& segs, double min_cell) : segs_(segs) {
     lo_ = Vec2::Constant(1e300);
     Vec2 hi = Vec2::Constant(-1e300);
     boxes_.resize(segs.size());
@@ -199,6 +201,9 @@ class SegGrid {
       lo_ = lo_.cwiseMin(boxes_[i].lo);
       hi = hi.cwiseMax(boxes_[i].hi);
     }
+    const double area = std::max(1e-12, (hi.x() - lo_.x()) * (hi.y() - lo_.y()));
+    const double cell =
+        std::max(min_cell, std::sqrt(2 * area / std::max<std::size_t>(1, segs.size())));
     cell_ = cell;
     nx_ = std::max(1, std::min(2048, static_cast<int>((hi.x() - lo_.x()) / cell) + 1));
     ny_ = std::max(1, std::min(2048, static_cast<int>((hi.y() - lo_.y()) / cell) + 1));
@@ -355,11 +360,12 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
     box[i].lo.array() -= eps;
     box[i].hi.array() += eps;
   }
+  // Sweep order: by left edge (key and index side by side: a cache-friendly sort).
+  std::vector<std::pair<double, std::uint32_t>> keyed(n);
+  for (std::uint32_t i = 0; i < n; ++i) keyed[i] = {box[i].lo.x(), i};
+  std::sort(keyed.begin(), keyed.end());
   std::vector<std::uint32_t> order(n);
-  for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return box[a].lo.x() < box[b].lo.x() || (box[a].lo.x() == box[b].lo.x() && a < b);
-  });
+  for (std::uint32_t i = 0; i < n; ++i) order[i] = keyed[i].second;
   std::vector<std::vector<SplitPoint>> splits(n);
   std::vector<std::uint8_t> crossed(loops.size());  // the crude loop meets itself or another
   std::vector<std::uint32_t> active;
@@ -440,9 +446,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
   std::vector<std::uint8_t> keep(pieces.size());
   auto valid = [&](const Seg2& sg) {
     if (!grid) {
-      double total = 0;
-      for (const Seg2& x : input) total += length(x);
-      grid.emplace(input, std::max(d, 4 * total / std::max<std::size_t>(1, input.size())));
+      grid.emplace(input, d);
     }
     return !grid->any_closer(sg, d - tol::kOffsetValid);
   };

@@ -146,8 +146,7 @@ TEST(NurbsOffset, ClosedEllipseInsideLosesBothEndLoops) {
     EXPECT_EQ(test::self_crossings(pl, false), 0);
     for (const Vec2& q : pl) ASSERT_NEAR(dist(q), 2, 0.005) << q.transpose();
   }
-  // The crossing points lie on the major axis (y = 0) at |x| = a - d * a / b... by symmetry
-  // at least on the axis.
+  // By symmetry the two crossing points lie on the major axis (y = 0).
   EXPECT_NEAR(o.pieces[0].ctrl.front().y(), 0, 1e-6);
   EXPECT_NEAR(o.pieces[1].ctrl.front().y(), 0, 1e-6);
 }
