@@ -26,19 +26,47 @@ std::vector<Seg2> profile_segments(const Profile& profile, double tolerance) {
   return out;
 }
 
+void first_offsets(const Profile& profile, double d, double tolerance, OffsetRuns& runs) {
+  for (const ProfileCurve& c : profile.curves) {
+    if (c.nurbs < 0) {
+      Seg2 o;
+      if (raw_offset(c.seg, d, o)) runs.add(c.seg.a, &o, 1);
+      continue;
+    }
+    // Tiller-Hanson: the offset NURBS (self-loops cut out) within tolerance, then arcs.
+    const NurbsOffset off =
+        nurbs_offset(profile.nurbs[static_cast<std::size_t>(c.nurbs)], d, tolerance);
+    std::vector<Seg2> chain;
+    for (const Nurbs2& piece : off.pieces) {
+      std::vector<Seg2> arcs = nurbs_to_arcs(piece, tolerance, c.seg.source);
+      if (arcs.empty()) continue;
+      if (!chain.empty()) arcs.front().a = chain.back().b;  // pieces meet at their cut
+      chain.insert(chain.end(), arcs.begin(), arcs.end());
+    }
+    runs.add(c.seg.a, chain.data(), chain.size());
+  }
+}
+
 PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
                                  const PocketOffsetParams& p) {
   std::vector<OffsetLevels> per_region(regions.size());
   const ForEach parallel = [](std::size_t n, const std::function<void(std::size_t)>& task) {
     par::for_each(n, 1, task);
   };
+  // The tolerance is split: half for NURBS offsets (Tiller-Hanson), half for their arcs.
+  const double half_tol = 0.5 * p.tolerance;
+  const double first = p.tool_radius + p.stock;
   par::for_each(regions.size(), 1, [&](std::size_t r) {
-    std::vector<std::vector<Seg2>> loops;
-    loops.push_back(profile_segments(regions[r].boundary, p.tolerance));
-    for (const Profile& island : regions[r].islands)
-      loops.push_back(profile_segments(island, p.tolerance));
-    per_region[r] = offset_levels(loops, p.tool_radius + p.stock, p.stepover, p.max_levels,
-                                  parallel);
+    std::vector<const Profile*> profiles{&regions[r].boundary};
+    for (const Profile& island : regions[r].islands) profiles.push_back(&island);
+    std::vector<std::vector<Seg2>> shapes;
+    std::vector<OffsetRuns> runs(profiles.size());
+    for (std::size_t l = 0; l < profiles.size(); ++l) {
+      shapes.push_back(profile_segments(*profiles[l], half_tol));
+      first_offsets(*profiles[l], first, half_tol, runs[l]);
+    }
+    per_region[r] = offset_levels_from(offset_prepared(std::move(runs), shapes, first),
+                                       p.stepover, p.max_levels, parallel);
   });
   PocketOffsetResult out;
   for (std::size_t r = 0; r < regions.size(); ++r) {

@@ -3,6 +3,9 @@
 // pocket tool paths: level 1 at the tool radius plus stock to leave, then one level per
 // stepover until nothing is left, with the offset generation history (parents).
 //
+// NURBS curves are offset by Tiller-Hanson for level 1 (tolerance split: half for the
+// offset curve, half for its arcs); later levels offset exact arcs.
+//
 // Input regions are independent (parallel tasks); within a level, the independent
 // sub-regions of a region are parallel tasks too (kernels/pocket/offset_levels.hpp). Output
 // order does not depend on the thread count.
@@ -36,6 +39,10 @@ struct PocketOffsetResult {
 
 // Lines and arcs of a profile, NURBS curves replaced by arcs within `tolerance`.
 std::vector<Seg2> profile_segments(const Profile& profile, double tolerance);
+
+// The raw offsets by d of a profile's curves: lines and arcs exactly, NURBS curves by
+// Tiller-Hanson (kernels/curves/nurbs.hpp) within `tolerance`, then as arcs within it.
+void first_offsets(const Profile& profile, double d, double tolerance, OffsetRuns& runs);
 
 PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
                                  const PocketOffsetParams& params);

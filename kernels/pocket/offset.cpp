@@ -148,34 +148,25 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
 }
 
 // The crude offset loop of one input loop, appended to raw.
-void crude_loop(const std::vector<Seg2>& in, double d, std::uint32_t loop_id,
-                std::vector<RawSeg>& raw) {
-  // Raw offsets, each with the input vertex it starts from.
-  std::vector<Seg2> offs;
-  std::vector<Vec2> vertex;
-  offs.reserve(in.size());
-  vertex.reserve(in.size());
-  for (const Seg2& s : in) {
-    Seg2 o;
-    if (raw_offset(s, d, o)) {
-      offs.push_back(o);
-      vertex.push_back(s.a);
-    }
-  }
-  if (offs.empty()) return;
-  const std::size_t n = offs.size();
-  // Join each consecutive pair; an offset is emitted once both its ends are settled. The
-  // last join (back to the first offset) may still move the first offset's start: the
+// The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
+// raw.
+void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, std::vector<RawSeg>& raw) {
+  const std::size_t n = runs.runs();
+  if (n == 0) return;
+  // Join each consecutive pair of runs; a run is emitted once both its ends are settled.
+  // The last join (back to the first run) may still move the first run's start: the
   // emitted copy is patched afterwards.
   const auto base = static_cast<std::uint32_t>(raw.size());
   std::vector<Seg2> joins;
   for (std::size_t k = 0; k < n; ++k) {
     joins.clear();
-    join(offs[k], offs[(k + 1) % n], vertex[(k + 1) % n], joins);
-    raw.push_back({offs[k], loop_id, 0, 0, false});
+    const std::size_t k1 = (k + 1) % n;
+    join(runs.segs[runs.start[k + 1] - 1], runs.segs[runs.start[k1]], runs.vertex[k1], joins);
+    for (std::uint32_t q = runs.start[k]; q < runs.start[k + 1]; ++q)
+      raw.push_back({runs.segs[q], loop_id, 0, 0, false});
     for (const Seg2& js : joins) raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
   }
-  raw[base].s = offs[0];
+  raw[base].s = runs.segs[0];
   const auto m = static_cast<std::uint32_t>(raw.size() - base);
   for (std::uint32_t k = 0; k < m; ++k) {
     raw[base + k].prev = base + (k + m - 1) % m;
@@ -344,11 +335,24 @@ int winding_number(const std::vector<Seg2>& loop, const Vec2& q) {
 }
 
 OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d) {
+  std::vector<OffsetRuns> runs(loops.size());
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    runs[l].segs.reserve(loops[l].size());
+    for (const Seg2& s : loops[l]) {
+      Seg2 o;
+      if (raw_offset(s, d, o)) runs[l].add(s.a, &o, 1);
+    }
+  }
+  return offset_prepared(std::move(runs), loops, d);
+}
+
+OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
+                             const std::vector<std::vector<Seg2>>& loops, double d) {
   OffsetResult res;
   const double eps = tol::kOffsetPoint;
   std::vector<RawSeg> raw;
-  for (std::size_t l = 0; l < loops.size(); ++l)
-    crude_loop(loops[l], d, static_cast<std::uint32_t>(l), raw);
+  for (std::size_t l = 0; l < runs.size(); ++l)
+    crude_loop(runs[l], static_cast<std::uint32_t>(l), raw);
   res.stats.raw_segments = raw.size();
   const std::size_t n = raw.size();
   if (n == 0) return res;

@@ -52,6 +52,27 @@ struct OffsetResult {
 // Offsets the loops (material on the right) by d > 0 into the material.
 OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d);
 
+// The raw offsets of one input loop's curves, already computed (e.g. a NURBS curve offset
+// by Tiller-Hanson and turned into arcs). Run k is segs[start[k], start[k+1]), a connected
+// chain; vertex[k] is where its input curve starts. Curves whose offset vanishes have no run.
+struct OffsetRuns {
+  std::vector<Seg2> segs;
+  std::vector<std::uint32_t> start{0};
+  std::vector<Vec2> vertex;
+  void add(const Vec2& v, const Seg2* first, std::size_t count) {
+    if (count == 0) return;
+    segs.insert(segs.end(), first, first + count);
+    start.push_back(static_cast<std::uint32_t>(segs.size()));
+    vertex.push_back(v);
+  }
+  std::size_t runs() const { return vertex.size(); }
+};
+// The same as offset_loops, with the raw offsets given per input curve; `shapes` are the
+// input loops as lines/arcs (within the caller's tolerance), used for validation.
+// runs is taken by value: joining trims the runs' ends in place.
+OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
+                             const std::vector<std::vector<Seg2>>& shapes, double d);
+
 // The raw offset of one segment by d to its right; empty when an arc collapses.
 bool raw_offset(const Seg2& s, double d, Seg2& out);
 

@@ -40,9 +40,12 @@ void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& 
 
 OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first,
                            double step, std::uint32_t max_levels, const ForEach& for_each) {
+  return offset_levels_from(offset_loops(input, first), step, max_levels, for_each);
+}
+
+OffsetLevels offset_levels_from(OffsetResult r, double step, std::uint32_t max_levels,
+                                const ForEach& for_each) {
   OffsetLevels out;
-  // Level 1.
-  OffsetResult r = offset_loops(input, first);
   out.open_fragments += r.stats.open_fragments;
   std::uint32_t level = 1;
   std::size_t prev_start = 0;

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "engine/parallel.hpp"
+#include "kernels/curves/nurbs.hpp"
 #include "tests/support/shapes2d.hpp"
 
 namespace ncpath {
@@ -80,6 +81,72 @@ TEST(PocketOffset, OneAndManyThreadsGiveTheSameLoops) {
     }
   }
   EXPECT_EQ(one.open_fragments, 0u);
+}
+
+// A pocket bounded by a wavy closed cubic B-spline (Tiller-Hanson offsets at level 1):
+// every point of every level-1 loop is at the offset distance from the spline, within the
+// tolerance, measured against a dense polyline of the spline (independent of the offset).
+TEST(PocketOffset, NurbsBoundaryLevelOneWithinTolerance) {
+  Nurbs2 c;
+  c.degree = 3;
+  const int n = 40;
+  for (int k = 0; k < n; ++k) {  // clockwise wavy ring, closed by repeating 3 points
+    const double a = -2 * std::numbers::pi * k / n;
+    const double r = 50 + 4 * std::sin(5 * a);
+    c.ctrl.emplace_back(r * std::cos(a), r * std::sin(a));
+  }
+  // Clamped and closed: first and last control points equal.
+  c.ctrl.push_back(c.ctrl.front());
+  const int m = static_cast<int>(c.ctrl.size());
+  c.weights.assign(m, 1.0);
+  for (int k = 0; k <= 3; ++k) c.knots.push_back(0);
+  for (int k = 1; k < m - 3; ++k) c.knots.push_back(k);
+  for (int k = 0; k <= 3; ++k) c.knots.push_back(m - 3);
+  ASSERT_EQ(validate(c), "");
+  Region r;
+  Seg2 ends = make_line(c.ctrl.front(), c.ctrl.back());
+  r.boundary.nurbs.push_back(c);
+  r.boundary.curves.push_back({ends, 0});
+  PocketOffsetParams p;
+  p.tool_radius = 3;
+  p.stepover = 100;  // level 1 only
+  p.tolerance = 0.01;
+  const PocketOffsetResult res = offset_pocket({r}, p);
+  ASSERT_EQ(res.loops.size(), 1u);
+  EXPECT_EQ(res.open_fragments, 0u);
+  const std::vector<Vec2> dense = nurbs_polyline(c, 1e-5);
+  for (const Seg2& s : res.loops[0].loop.segs)
+    for (double t : {0.0, 0.5}) {
+      const Vec2 q = point_at(s, t);
+      double best = 1e300;
+      for (std::size_t k = 0; k + 1 < dense.size(); ++k)
+        best = std::min(best, distance(make_line(dense[k], dense[k + 1]), q));
+      EXPECT_NEAR(best, 3.0, p.tolerance + 1e-5) << q.transpose();
+    }
+}
+
+// An offset equal to the radius of a NURBS circle pocket leaves nothing, and cleanly.
+TEST(PocketOffset, OffsetEqualToNurbsCurvatureRadius) {
+  const double w = std::sqrt(0.5);
+  Nurbs2 c;  // rational quadratic full circle of radius 10, clockwise
+  c.degree = 2;
+  c.ctrl = {{10, 0}, {10, -10}, {0, -10}, {-10, -10}, {-10, 0}, {-10, 10}, {0, 10}, {10, 10}, {10, 0}};
+  c.weights = {1, w, 1, w, 1, w, 1, w, 1};
+  c.knots = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
+  ASSERT_EQ(validate(c), "");
+  Region r;
+  r.boundary.nurbs.push_back(c);
+  r.boundary.curves.push_back({make_line(c.ctrl.front(), c.ctrl.back()), 0});
+  PocketOffsetParams p;
+  p.stepover = 100;
+  p.tool_radius = 10;
+  const PocketOffsetResult gone = offset_pocket({r}, p);
+  EXPECT_TRUE(gone.loops.empty());
+  EXPECT_EQ(gone.open_fragments, 0u);
+  p.tool_radius = 9;
+  const PocketOffsetResult small = offset_pocket({r}, p);
+  ASSERT_EQ(small.loops.size(), 1u);
+  EXPECT_NEAR(-small.loops[0].loop.area2 / 2, std::numbers::pi, 0.01 * 2 * std::numbers::pi + 1e-6);
 }
 
 }  // namespace
