@@ -37,8 +37,13 @@ bool adjacent_may_cross(const Seg2& first, const Seg2& second) {
     const Vec2 d = line.b - line.a;
     const double l2 = d.squaredNorm();
     if (l2 == 0) return false;
-    // Second point of the line through p on the circle: p + s d, s = -2 (p - c).d / |d|^2.
-    q = p - (2 * (p - arc.c).dot(d) / l2) * d;
+    // Second point of the line through p on the circle: p + s d, s = -2 (p - c).d / |d|^2;
+    // on the line segment only for s in [-1, 0] (p is its end) or [0, 1] (p its start).
+    const double sp = -2 * (p - arc.c).dot(d) / l2;
+    const double slack = tol::kOffsetJoint / std::sqrt(l2);
+    if (first.is_arc() ? (sp < -slack || sp > 1 + slack) : (sp < -1 - slack || sp > slack))
+      return false;
+    q = p + sp * d;
   } else {
     const Vec2 u = second.c - first.c;
     const double l2 = u.squaredNorm();
@@ -334,7 +339,8 @@ int winding_number(const std::vector<Seg2>& loop, const Vec2& q) {
   return w;
 }
 
-OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d) {
+OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
+                          const std::vector<double>* area2) {
   std::vector<OffsetRuns> runs(loops.size());
   for (std::size_t l = 0; l < loops.size(); ++l) {
     runs[l].segs.reserve(loops[l].size());
@@ -343,14 +349,18 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d)
       if (raw_offset(s, d, o)) runs[l].add(s.a, &o, 1);
     }
   }
-  return offset_prepared(std::move(runs), loops, d);
+  return offset_prepared(std::move(runs), loops, d, area2);
 }
 
 OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
-                             const std::vector<std::vector<Seg2>>& loops, double d) {
+                             const std::vector<std::vector<Seg2>>& loops, double d,
+                             const std::vector<double>* area2) {
   OffsetResult res;
   const double eps = tol::kOffsetPoint;
   std::vector<RawSeg> raw;
+  std::size_t expected = 0;
+  for (const OffsetRuns& r : runs) expected += r.segs.size() + r.runs();
+  raw.reserve(expected + expected / 4);
   for (std::size_t l = 0; l < runs.size(); ++l)
     crude_loop(runs[l], static_cast<std::uint32_t>(l), raw);
   res.stats.raw_segments = raw.size();
@@ -409,6 +419,7 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
     bool at_crossing;  // starts at a crossing (where another piece may continue instead)
   };
   std::vector<Piece> pieces;
+  pieces.reserve(n + 2 * res.stats.intersections + 1);
   std::vector<std::uint8_t> cut_at_start(n, 0);  // a crossing sits on the raw joint
   for (std::size_t i = 0; i < n; ++i)
     for (const SplitPoint& q : splits[i]) {
@@ -443,13 +454,14 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
     if (!crossed[r.loop]) crude_area2[r.loop] += area2_contribution(r.s);
   std::vector<std::uint8_t> same_way(loops.size());
   for (std::size_t l = 0; l < loops.size(); ++l)
-    if (!crossed[l]) same_way[l] = (crude_area2[l] < 0) == (loop_area2(loops[l]) < 0);
-  std::vector<Seg2> input;
-  for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
+    if (!crossed[l])
+      same_way[l] = (crude_area2[l] < 0) == ((area2 ? (*area2)[l] : loop_area2(loops[l])) < 0);
+  std::vector<Seg2> input;  // all input curves, gathered only when a distance is needed
   std::optional<SegGrid> grid;
   std::vector<std::uint8_t> keep(pieces.size());
   auto valid = [&](const Seg2& sg) {
     if (!grid) {
+      for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
       grid.emplace(input, d);
     }
     return !grid->any_closer(sg, d - tol::kOffsetValid);
@@ -576,7 +588,8 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
   // leave holes inside boundaries. A counter-clockwise loop outside every clockwise one is
   // what is left of islands after the boundary closed over them: no material there.
   bool pocket = false;
-  for (const auto& l : loops) pocket |= loop_area2(l) < 0;
+  for (std::size_t l = 0; l < loops.size(); ++l)
+    pocket |= (area2 ? (*area2)[l] : loop_area2(loops[l])) < 0;
   if (pocket) {
     std::vector<std::uint8_t> ok(res.loops.size());
     for (std::size_t i = 0; i < res.loops.size(); ++i) {

@@ -49,8 +49,10 @@ struct OffsetResult {
   OffsetStats stats;
 };
 
-// Offsets the loops (material on the right) by d > 0 into the material.
-OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d);
+// Offsets the loops (material on the right) by d > 0 into the material. area2, when given,
+// holds loop_area2 of each input loop (saves recomputing it).
+OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
+                          const std::vector<double>* area2 = nullptr);
 
 // The raw offsets of one input loop's curves, already computed (e.g. a NURBS curve offset
 // by Tiller-Hanson and turned into arcs). Run k is segs[start[k], start[k+1]), a connected
@@ -71,7 +73,8 @@ struct OffsetRuns {
 // input loops as lines/arcs (within the caller's tolerance), used for validation.
 // runs is taken by value: joining trims the runs' ends in place.
 OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
-                             const std::vector<std::vector<Seg2>>& shapes, double d);
+                             const std::vector<std::vector<Seg2>>& shapes, double d,
+                             const std::vector<double>* area2 = nullptr);
 
 // The raw offset of one segment by d to its right; empty when an arc collapses.
 bool raw_offset(const Seg2& s, double d, Seg2& out);

@@ -5,17 +5,20 @@
 
 namespace ncpath {
 
-std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLoop>& loops) {
-  const std::size_t n = loops.size();
+namespace {
+
+// Loops given by an accessor, so callers need not copy them into a vector first.
+template <class Loop>
+std::vector<std::vector<std::uint32_t>> group_regions_of(std::size_t n, Loop loop) {
   std::vector<std::int64_t> owner(n, -1);
   for (std::size_t h = 0; h < n; ++h) {
-    if (loops[h].area2 <= 0) continue;  // holes are counter-clockwise
-    const Vec2 p = loops[h].segs.front().a;
+    if (loop(h).area2 <= 0) continue;  // holes are counter-clockwise
+    const Vec2 p = loop(h).segs.front().a;
     double best_area = 1e300;
     for (std::size_t o = 0; o < n; ++o) {
-      if (loops[o].area2 >= 0) continue;
-      const double a = -loops[o].area2;
-      if (a < best_area && winding_number(loops[o].segs, p) != 0) {
+      if (loop(o).area2 >= 0) continue;
+      const double a = -loop(o).area2;
+      if (a < best_area && winding_number(loop(o).segs, p) != 0) {
         best_area = a;
         owner[h] = static_cast<std::int64_t>(o);
       }
@@ -32,6 +35,12 @@ std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLo
     regions[static_cast<std::size_t>(region_of[root])].push_back(static_cast<std::uint32_t>(i));
   }
   return regions;
+}
+
+}  // namespace
+
+std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLoop>& loops) {
+  return group_regions_of(loops.size(), [&](std::size_t k) -> const OffsetLoop& { return loops[k]; });
 }
 
 void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& task) {
@@ -57,17 +66,21 @@ OffsetLevels offset_levels_from(OffsetResult r, double step, std::uint32_t max_l
   while (level < max_levels) {
     const std::size_t prev_end = out.loops.size();
     if (prev_end == prev_start) break;
-    std::vector<OffsetLoop> prev;
-    for (std::size_t k = prev_start; k < prev_end; ++k) prev.push_back(out.loops[k].loop);
+    auto prev = [&](std::size_t k) -> const OffsetLoop& { return out.loops[prev_start + k].loop; };
     ++level;
     // Regions are independent: offset them as tasks into their own slots, then append the
-    // slots in region order.
-    const std::vector<std::vector<std::uint32_t>> regions = group_regions(prev);
+    // slots in region order (out.loops is not touched while the tasks run).
+    const std::vector<std::vector<std::uint32_t>> regions =
+        group_regions_of(prev_end - prev_start, prev);
     std::vector<OffsetResult> slots(regions.size());
     for_each(regions.size(), [&](std::size_t r) {
       std::vector<std::vector<Seg2>> loops;
-      for (std::uint32_t k : regions[r]) loops.push_back(prev[k].segs);
-      slots[r] = offset_loops(loops, step);
+      std::vector<double> area2;
+      for (std::uint32_t k : regions[r]) {
+        loops.push_back(prev(k).segs);
+        area2.push_back(prev(k).area2);
+      }
+      slots[r] = offset_loops(loops, step, &area2);
     });
     for (std::size_t r = 0; r < regions.size(); ++r) {
       out.open_fragments += slots[r].stats.open_fragments;
