@@ -18,7 +18,8 @@ Vec2 wave(double t, double amplitude) {
 
 // Circle through three points.
 Vec2 circumcentre(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const double d = 2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
+  const double d =
+      2 * (a.x() * (b.y() - c.y()) + b.x() * (c.y() - a.y()) + c.x() * (a.y() - b.y()));
   const double a2 = a.squaredNorm(), b2 = b.squaredNorm(), c2 = c.squaredNorm();
   return {(a2 * (b.y() - c.y()) + b2 * (c.y() - a.y()) + c2 * (a.y() - b.y())) / d,
           (a2 * (c.x() - b.x()) + b2 * (a.x() - c.x()) + c2 * (b.x() - a.x())) / d};
@@ -29,7 +30,8 @@ std::vector<Seg2> wave_loop(int segments, double amplitude) {
   std::vector<Seg2> loop;
   const double two_pi = 2 * std::numbers::pi;
   for (int k = 0; k < segments; ++k) {
-    const double t0 = two_pi * (segments - k) / segments, t1 = two_pi * (segments - k - 1) / segments;
+    const double t0 = two_pi * (segments - k) / segments,
+                 t1 = two_pi * (segments - k - 1) / segments;
     const Vec2 a = k == 0 ? wave(0, amplitude) : loop.back().b;
     const Vec2 b = k + 1 == segments ? wave(0, amplitude) : wave(t1, amplitude);
     if (k % 2 == 0) {

@@ -14,7 +14,7 @@ namespace {
 Region nurbs_pocket(int spans) {
   Nurbs2 c;
   c.degree = 3;
-  const int n = spans + 2;  // control points before closing
+  const int n = spans + 2;       // control points before closing
   for (int k = 0; k < n; ++k) {  // clockwise wavy ring
     const double a = -2 * std::numbers::pi * k / n;
     const double r = 100 + 6 * std::sin(12 * a);

@@ -91,7 +91,8 @@ int main(int argc, char** argv) {
   app.add_option("--strip-height", strip_height, "Raster tuning (0 = automatic)");
   app.add_option("--bin-width", bin_width, "Raster tuning (0 = automatic)");
   CLI11_PARSE(app, argc, argv);
-  if (mesh_path.empty()) mesh_path = std::string(NCPATH_SOURCE_DIR) + "/datasets/cache/meshes/bunny00.off";
+  if (mesh_path.empty())
+    mesh_path = std::string(NCPATH_SOURCE_DIR) + "/datasets/cache/meshes/bunny00.off";
 
   Cutter tool;
   if (std::string e = jobs::parse_tool(tool_text, tool); !e.empty()) {
@@ -129,10 +130,11 @@ int main(int argc, char** argv) {
       par::ThreadLimit limit(threads.back());
       const Result b = run_embree_baseline(in.mesh, tool, p, box.lo.z(), box);
       const double rate = b.points / b.seconds;
-      std::printf("%-9g %-7d %12llu %10.3f %14.0f   embree baseline (cut points only); "
-                  "raster is %.2fx\n",
-                  interval, threads.back(), static_cast<unsigned long long>(b.points), b.seconds,
-                  rate, raster_rate_2 / rate);
+      std::printf(
+          "%-9g %-7d %12llu %10.3f %14.0f   embree baseline (cut points only); "
+          "raster is %.2fx\n",
+          interval, threads.back(), static_cast<unsigned long long>(b.points), b.seconds, rate,
+          raster_rate_2 / rate);
       (void)raster_checksum;
     }
   }

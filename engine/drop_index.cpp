@@ -137,8 +137,7 @@ CutterContact DropIndex::query(double x, double y) const {
   return q.best;
 }
 
-CutterContact drop_brute_force(const FacetTable& table, const Cutter& cutter, double x,
-                               double y) {
+CutterContact drop_brute_force(const FacetTable& table, const Cutter& cutter, double x, double y) {
   CutterContact best;
   for (std::size_t i = 0; i < table.facets.size(); ++i)
     drop_facet(cutter, table.facets[i], x, y, static_cast<std::uint32_t>(i), best);

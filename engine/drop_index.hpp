@@ -33,7 +33,6 @@ class DropIndex {
 };
 
 // The reference answer: every facet tested, in index order (ties keep the lowest index).
-CutterContact drop_brute_force(const FacetTable& table, const Cutter& cutter, double x,
-                               double y);
+CutterContact drop_brute_force(const FacetTable& table, const Cutter& cutter, double x, double y);
 
 }  // namespace ncpath

@@ -65,12 +65,11 @@ ClusteredFacets cluster_facets(const FacetTable& table, const Cutter& cutter, un
   out.clusters.resize(clusters);
   par::for_each(clusters, 256, [&](std::size_t c) {
     const std::size_t first = c * group, last = std::min(n, first + group);
-    ClusterBound cb{-std::numeric_limits<double>::infinity(),
-                    std::numeric_limits<double>::infinity(),
-                    -std::numeric_limits<double>::infinity(),
-                    std::numeric_limits<double>::infinity(),
-                    -std::numeric_limits<double>::infinity(),
-                    static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last - first)};
+    ClusterBound cb{
+        -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+        -std::numeric_limits<double>::infinity(), static_cast<std::uint32_t>(first),
+        static_cast<std::uint32_t>(last - first)};
     for (std::size_t k = first; k < last; ++k) {
       const auto id = static_cast<std::uint32_t>(keys[k] & 0xFFFFFFFFu);
       const FacetBound b = facet_bound(table.facets[id], cutter, id);

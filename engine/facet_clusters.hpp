@@ -34,8 +34,7 @@ struct ClusteredFacets {
   std::vector<ClusterBound> clusters;
 };
 
-ClusteredFacets cluster_facets(const FacetTable& table, const Cutter& cutter,
-                               unsigned group = 16);
+ClusteredFacets cluster_facets(const FacetTable& table, const Cutter& cutter, unsigned group = 16);
 
 // The bound of one facet for one cutter (exposed for tests).
 FacetBound facet_bound(const PreparedFacet& f, const Cutter& cutter, std::uint32_t id);

@@ -47,8 +47,7 @@ void first_offsets(const Profile& profile, double d, double tolerance, OffsetRun
   }
 }
 
-PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
-                                 const PocketOffsetParams& p) {
+PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const PocketOffsetParams& p) {
   std::vector<OffsetLevels> per_region(regions.size());
   const ForEach parallel = [](std::size_t n, const std::function<void(std::size_t)>& task) {
     par::for_each(n, 1, task);
@@ -65,8 +64,8 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
       shapes.push_back(profile_segments(*profiles[l], half_tol));
       first_offsets(*profiles[l], first, half_tol, runs[l]);
     }
-    per_region[r] = offset_levels_from(offset_prepared(std::move(runs), shapes, first),
-                                       p.stepover, p.max_levels, parallel);
+    per_region[r] = offset_levels_from(offset_prepared(std::move(runs), shapes, first), p.stepover,
+                                       p.max_levels, parallel);
   });
   PocketOffsetResult out;
   for (std::size_t r = 0; r < regions.size(); ++r) {

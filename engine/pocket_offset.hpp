@@ -18,10 +18,10 @@
 namespace ncpath {
 
 struct PocketOffsetParams {
-  double tool_radius = 3;    // mm
-  double stepover = 1;       // mm between levels
-  double stock = 0;          // mm left on walls and islands
-  double tolerance = 0.01;   // mm: NURBS curves become arcs within this
+  double tool_radius = 3;   // mm
+  double stepover = 1;      // mm between levels
+  double stock = 0;         // mm left on walls and islands
+  double tolerance = 0.01;  // mm: NURBS curves become arcs within this
   std::uint32_t max_levels = 100000;
 };
 
@@ -34,7 +34,7 @@ struct PocketLoop {
 struct PocketOffsetResult {
   std::vector<PocketLoop> loops;  // region by region, level by level
   std::uint64_t open_fragments = 0;
-  std::uint32_t levels = 0;       // deepest level reached
+  std::uint32_t levels = 0;  // deepest level reached
 };
 
 // Lines and arcs of a profile, NURBS curves replaced by arcs within `tolerance`.

@@ -125,8 +125,8 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
 
   const double R = cutter.radius;
   const double strip_h = p.strip_height > 0 ? p.strip_height : std::max(p.interval, 0.5 * R);
-  const std::size_t lines_per_strip =
-      std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(strip_h / p.interval + tol::kCountSlack)));
+  const std::size_t lines_per_strip = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::floor(strip_h / p.interval + tol::kCountSlack)));
   const double bin_w = p.bin_width > 0 ? p.bin_width : std::max(p.step, 0.5 * R);
   const std::size_t strips = (n_lines + lines_per_strip - 1) / lines_per_strip;
   const ClusteredFacets clustered = cluster_facets(table, cutter);
@@ -135,8 +135,8 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
   st.index_s = index_clock.seconds();
 
   const double min_step = p.min_step > 0 ? p.min_step : p.step / 64;
-  const std::size_t link_segments =
-      std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(p.interval / p.step - tol::kCountSlack)));
+  const std::size_t link_segments = std::max<std::size_t>(
+      1, static_cast<std::size_t>(std::ceil(p.interval / p.step - tol::kCountSlack)));
 
   auto run_strip = [&](std::size_t s, StripOutput& out) {
     StripBins bins;
@@ -178,8 +178,8 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
       const double u = forward ? u_last : u0;
       CutterContact lh;
       for (std::size_t k = 0; k <= link_segments; ++k) {
-        const double vk = v + p.interval * static_cast<double>(k) /
-                                  static_cast<double>(link_segments);
+        const double vk =
+            v + p.interval * static_cast<double>(k) / static_cast<double>(link_segments);
         lh = sampler.at(u, vk, lh);
         emit(u, vk, lh);
       }

@@ -29,16 +29,16 @@ enum class ScanDirection : std::uint8_t { kX = 0, kY = 1 };
 
 struct RasterParams {
   ScanDirection direction = ScanDirection::kX;  // lines run along this axis
-  double interval = 0.5;           // mm between scan lines (stepover)
-  double step = 0.1;               // mm between samples along a line
-  double margin = 0.0;             // mm added on every side of the part's xy box
-  std::optional<std::array<double, 4>> rect;  // x_min, y_min, x_max, y_max (mm); overrides
-  double adaptive_tolerance = 0;   // mm; 0 = fixed sampling only
-  double min_step = 0;             // mm; smallest adaptive spacing; 0 = step / 64
-  std::optional<double> floor_z;   // mm; default: the part's lowest z
-  std::uint32_t chunk_lines = 64;  // lines per streamed chunk (memory vs overhead)
-  double strip_height = 0;         // mm of lines sharing one candidate set; 0 = auto
-  double bin_width = 0;            // mm of x-bins within a strip; 0 = auto
+  double interval = 0.5;                        // mm between scan lines (stepover)
+  double step = 0.1;                            // mm between samples along a line
+  double margin = 0.0;                          // mm added on every side of the part's xy box
+  std::optional<std::array<double, 4>> rect;    // x_min, y_min, x_max, y_max (mm); overrides
+  double adaptive_tolerance = 0;                // mm; 0 = fixed sampling only
+  double min_step = 0;                          // mm; smallest adaptive spacing; 0 = step / 64
+  std::optional<double> floor_z;                // mm; default: the part's lowest z
+  std::uint32_t chunk_lines = 64;               // lines per streamed chunk (memory vs overhead)
+  double strip_height = 0;                      // mm of lines sharing one candidate set; 0 = auto
+  double bin_width = 0;                         // mm of x-bins within a strip; 0 = auto
 };
 
 // Samples at origin + k * spacing, k = 0 .. floor(extent / spacing): their count.
@@ -55,11 +55,11 @@ struct RasterStats {
   std::uint64_t floor_points = 0;     // points where the tool touched nothing above the floor
   std::uint64_t facets = 0;           // facets used (non-degenerate)
   std::uint64_t facets_degenerate = 0;
-  double floor_z = 0;                 // mm
-  std::array<double, 4> rect{};       // the rectangle actually scanned
-  double index_s = 0;                 // facet table + strip buckets
-  double compute_s = 0;               // drop-cutting (wall time of the chunk computations)
-  double sink_s = 0;                  // time spent in sink (writing), overlapped with compute
+  double floor_z = 0;            // mm
+  std::array<double, 4> rect{};  // the rectangle actually scanned
+  double index_s = 0;            // facet table + strip buckets
+  double compute_s = 0;          // drop-cutting (wall time of the chunk computations)
+  double sink_s = 0;             // time spent in sink (writing), overlapped with compute
 };
 
 // Throws Cancelled if control.cancel is set; std::invalid_argument for bad params.

@@ -25,7 +25,6 @@ inline bool cell_range(double a, double b, double origin, double size, std::size
   return true;
 }
 
-
 // True when nothing in the xy box [x_lo, x_hi] x [y_lo, y_hi] with top `top` can put the
 // tool tip above `best`: it is out of reach, or its top lowered by the cutter's rise at
 // the box's nearest horizontal distance is not above best.
@@ -34,13 +33,14 @@ inline bool box_cannot_beat(const Cutter& c, double x, double y, double x_lo, do
   const double dx = std::max({0.0, x_lo - x, x - x_hi});
   const double dy = std::max({0.0, y_lo - y, y - y_hi});
   const double rho2 = dx * dx + dy * dy;
-  return rho2 > c.radius * c.radius || profile_height_at_least(c, rho2, top - best - tol::kBoundTie);
+  return rho2 > c.radius * c.radius ||
+         profile_height_at_least(c, rho2, top - best - tol::kBoundTie);
 }
 
 }  // namespace
 
-StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double radius,
-                                      double y0, double height, std::size_t strips) {
+StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double radius, double y0,
+                                      double height, std::size_t strips) {
   StripBuckets b;
   b.y0 = y0;
   b.height = height;
@@ -57,8 +57,7 @@ StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double r
   std::vector<std::uint32_t> lo(n), hi(n);
   std::vector<std::uint8_t> hit(n);
   for (std::size_t i = 0; i < n; ++i) {  // count
-    hit[i] = cell_range(cl[i].y_lo - radius, cl[i].y_hi + radius, y0, height, strips, lo[i],
-                        hi[i]);
+    hit[i] = cell_range(cl[i].y_lo - radius, cl[i].y_hi + radius, y0, height, strips, lo[i], hi[i]);
     if (hit[i])
       for (std::uint32_t s = lo[i]; s <= hi[i]; ++s) ++b.offsets[s + 1];
   }
@@ -111,14 +110,12 @@ CutterContact StripBins::drop(double x, double y, CutterContact best) const {
   const ClusterBound* end = entries_.data() + offsets_[bin + 1];
   const FacetBound* facets = clustered_->facets.data();
   for (; e != end && e->top_z > best.tip_z; ++e) {
-    if (box_cannot_beat(cutter_, x, y, e->x_lo, e->x_hi, e->y_lo, e->y_hi, e->top_z,
-                        best.tip_z))
+    if (box_cannot_beat(cutter_, x, y, e->x_lo, e->x_hi, e->y_lo, e->y_hi, e->top_z, best.tip_z))
       continue;
     const FacetBound* f = facets + e->first;
     const FacetBound* f_end = f + e->count;
     for (; f != f_end && f->top_z > best.tip_z; ++f) {  // highest top first
-      if (box_cannot_beat(cutter_, x, y, f->x_lo, f->x_hi, f->y_lo, f->y_hi, f->top_z,
-                          best.tip_z))
+      if (box_cannot_beat(cutter_, x, y, f->x_lo, f->x_hi, f->y_lo, f->y_hi, f->top_z, best.tip_z))
         continue;
       if (f->plane_a * x + f->plane_b * y + f->plane_c <= best.tip_z + tol::kBoundTie) continue;
       drop_facet(cutter_, table_->facets[f->facet], x, y, f->facet, best);

@@ -31,16 +31,15 @@ struct StripBuckets {
   std::size_t strip_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
 };
 
-StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double radius,
-                                      double y0, double height, std::size_t strips);
+StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double radius, double y0,
+                                      double height, std::size_t strips);
 
 // The x-binned candidate lists of one strip. Built by the task that owns the strip.
 class StripBins {
  public:
   // ids: the strip's clusters, highest top first (as bucket_clusters_by_strip leaves them).
   void rebuild(const FacetTable& table, const ClusteredFacets& clustered, const Cutter& cutter,
-               const std::uint32_t* ids, std::size_t count, double x0, double x1,
-               double bin_width);
+               const std::uint32_t* ids, std::size_t count, double x0, double x1, double bin_width);
 
   // Highest contact at (x, y), starting from `seed` (a lower bound on the answer, e.g. the
   // floor or the previous point's contact); x must lie in [x0, x1] of rebuild().
@@ -52,7 +51,7 @@ class StripBins {
   Cutter cutter_;
   double x0_ = 0, inv_width_ = 1;
   std::vector<std::uint32_t> offsets_;
-  std::vector<ClusterBound> entries_;          // copies, for locality of the walk
+  std::vector<ClusterBound> entries_;            // copies, for locality of the walk
   std::vector<std::uint32_t> lo_, hi_, cursor_;  // scratch for rebuild()
 };
 

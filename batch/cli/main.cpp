@@ -24,14 +24,19 @@ struct Common {
 
 void add_common(CLI::App* app, Common& c) {
   app->add_option("--mesh", c.mesh, "Part mesh: STL (binary or ASCII) or OFF")->required();
-  app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")->capture_default_str();
-  app->add_option("--out", c.out, "HDF5 file to write (see docs/hdf5-schema.md)")->capture_default_str();
+  app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
+      ->capture_default_str();
+  app->add_option("--out", c.out, "HDF5 file to write (see docs/hdf5-schema.md)")
+      ->capture_default_str();
   app->add_option("--name", c.name, "Job name inside the HDF5 file (default: the operation)");
   app->add_option("--threads", c.threads, "Worker threads, 0 = all cores")->capture_default_str();
-  app->add_option("--fit-xy", c.fit_xy,
-                  "Scale the mesh uniformly about the origin so its longest xy side is this many mm");
-  app->add_option("--scale", c.scale, "Uniform scale factor (applied with --fit-xy)")->capture_default_str();
-  app->add_option("--translate", c.translate, "Translation x y z in mm, after scaling")->expected(3);
+  app->add_option(
+      "--fit-xy", c.fit_xy,
+      "Scale the mesh uniformly about the origin so its longest xy side is this many mm");
+  app->add_option("--scale", c.scale, "Uniform scale factor (applied with --fit-xy)")
+      ->capture_default_str();
+  app->add_option("--translate", c.translate, "Translation x y z in mm, after scaling")
+      ->expected(3);
   app->add_flag("-q,--quiet", c.quiet, "No progress bar");
 }
 
@@ -47,7 +52,8 @@ jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
   }
   j.transform.scale = c.scale;
   j.transform.fit_xy_mm = c.fit_xy;
-  if (c.translate.size() == 3) j.transform.translate = Vec3(c.translate[0], c.translate[1], c.translate[2]);
+  if (c.translate.size() == 3)
+    j.transform.translate = Vec3(c.translate[0], c.translate[1], c.translate[2]);
   if (std::string e = validate(j.transform); !e.empty() && j.error.empty()) {
     j.error = "--" + e;
     j.error_status = "invalid_parameter";
@@ -102,8 +108,9 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ncpath: exact cutter-location (CL) data for NC milling, in bulk.\n"
-               "Units are mm; CL points are tool-tip positions, tool axis +Z."};
+  CLI::App app{
+      "ncpath: exact cutter-location (CL) data for NC milling, in bulk.\n"
+      "Units are mm; CL points are tool-tip positions, tool axis +Z."};
   app.require_subcommand(1);
   app.set_version_flag("--version", NCPATH_VERSION);
 
@@ -114,19 +121,25 @@ int main(int argc, char** argv) {
   std::optional<double> floor_z;
   CLI::App* raster = app.add_subcommand("raster", "Zig-zag drop-cutter finishing over a mesh");
   add_common(raster, rc);
-  raster->add_option("--interval", rp.interval, "Distance between scan lines (mm)")->capture_default_str();
-  raster->add_option("--step", rp.step, "Sampling step along a scan line (mm)")->capture_default_str();
+  raster->add_option("--interval", rp.interval, "Distance between scan lines (mm)")
+      ->capture_default_str();
+  raster->add_option("--step", rp.step, "Sampling step along a scan line (mm)")
+      ->capture_default_str();
   raster->add_option("--direction", direction, "Scan lines run along x or y")
-      ->check(CLI::IsMember({"x", "y"}))->capture_default_str();
+      ->check(CLI::IsMember({"x", "y"}))
+      ->capture_default_str();
   raster->add_option("--margin", rp.margin, "Grow the part's xy box by this on every side (mm)")
       ->capture_default_str();
   raster->add_option("--rect", rect, "Scan this rectangle instead: x_min y_min x_max y_max (mm)")
       ->expected(4);
-  raster->add_option("--adaptive", rp.adaptive_tolerance,
-                     "Chordal tolerance of adaptive sampling (mm), 0 = off")->capture_default_str();
+  raster
+      ->add_option("--adaptive", rp.adaptive_tolerance,
+                   "Chordal tolerance of adaptive sampling (mm), 0 = off")
+      ->capture_default_str();
   raster->add_option("--min-step", rp.min_step, "Smallest adaptive spacing (mm), 0 = step/64")
       ->capture_default_str();
-  raster->add_option("--floor-z", floor_z, "Height where the tool touches nothing (mm); default: the part's lowest z");
+  raster->add_option("--floor-z", floor_z,
+                     "Height where the tool touches nothing (mm); default: the part's lowest z");
 
   Common dc;
   std::string points;
@@ -136,7 +149,7 @@ int main(int argc, char** argv) {
       ->required();
 
   std::string profile, offset_tool = "flat:6", offset_out = "ncpath-out.h5", offset_name,
-      stepover_text;
+                       stepover_text;
   int offset_threads = 0;
   bool offset_quiet = false;
   jobs::OffsetParams op;
@@ -146,17 +159,20 @@ int main(int argc, char** argv) {
       ->required();
   offset->add_option("--tool", offset_tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
       ->capture_default_str();
-  offset->add_option("--stepover", stepover_text,
-                     "Distance between levels: mm, or a percentage of the tool diameter (40%)")
+  offset
+      ->add_option("--stepover", stepover_text,
+                   "Distance between levels: mm, or a percentage of the tool diameter (40%)")
       ->required();
   offset->add_option("--stock", op.stock, "Material left on walls and islands (mm)")
       ->capture_default_str();
   offset->add_option("--depth", op.depth, "Depth at which loops are written as paths (mm)")
       ->capture_default_str();
-  offset->add_option("--tolerance", op.tolerance,
-                     "NURBS-to-arc and arc-to-polyline tolerance (mm)")->capture_default_str();
-  offset->add_option("--join-tolerance", op.join_tolerance,
-                     "Profile end points closer than this are joined (mm)")->capture_default_str();
+  offset->add_option("--tolerance", op.tolerance, "NURBS-to-arc and arc-to-polyline tolerance (mm)")
+      ->capture_default_str();
+  offset
+      ->add_option("--join-tolerance", op.join_tolerance,
+                   "Profile end points closer than this are joined (mm)")
+      ->capture_default_str();
   offset->add_option("--out", offset_out, "HDF5 file to write")->capture_default_str();
   offset->add_option("--name", offset_name, "Job name inside the HDF5 file (default: offset)");
   offset->add_option("--threads", offset_threads, "Worker threads, 0 = all cores")

@@ -88,27 +88,28 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
   };
   if (!job.error.empty()) {
     fail(job.error_status.c_str(), job.error);
-  } else try {
-    if (job.operation == Operation::kOffset) {
-      const OffsetJobSummary r = run_offset_job(job, cl, stats);
-      o.points = r.points;
-      o.compute_s = r.compute_s;
-    } else {
-      run_mesh_job(job, cl, obs, stats, o);
+  } else
+    try {
+      if (job.operation == Operation::kOffset) {
+        const OffsetJobSummary r = run_offset_job(job, cl, stats);
+        o.points = r.points;
+        o.compute_s = r.compute_s;
+      } else {
+        run_mesh_job(job, cl, obs, stats, o);
+      }
+      stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
+      o.status = "ok";
+    } catch (const io::ReadError& e) {
+      fail("invalid_input", e.what());
+    } catch (const std::invalid_argument& e) {
+      fail("invalid_parameter", e.what());
+    } catch (const Cancelled&) {
+      fail("cancelled", "cancelled by the user");
+    } catch (const std::bad_alloc&) {
+      fail("out_of_memory", "ran out of memory");
+    } catch (const std::exception& e) {
+      fail("internal_error", e.what());
     }
-    stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
-    o.status = "ok";
-  } catch (const io::ReadError& e) {
-    fail("invalid_input", e.what());
-  } catch (const std::invalid_argument& e) {
-    fail("invalid_parameter", e.what());
-  } catch (const Cancelled&) {
-    fail("cancelled", "cancelled by the user");
-  } catch (const std::bad_alloc&) {
-    fail("out_of_memory", "ran out of memory");
-  } catch (const std::exception& e) {
-    fail("internal_error", e.what());
-  }
   o.seconds = all.seconds();
   o.peak_rss_bytes = peak_rss_bytes();
   stats.push_back({"total_s", o.seconds, "s"});
@@ -126,8 +127,7 @@ std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& o
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec)
-      throw std::runtime_error(dir.string() + ": cannot create the output folder: " +
-                               ec.message());
+      throw std::runtime_error(dir.string() + ": cannot create the output folder: " + ec.message());
   }
   out::ClFile file(batch.output, NCPATH_VERSION);
   std::vector<JobOutcome> outcomes;

@@ -15,8 +15,8 @@ struct JobOutcome {
   std::string status;   // "ok", "invalid_input", "invalid_parameter", "io_error", ...
   std::string message;  // what went wrong, for a person; empty when ok
   std::uint64_t points = 0;
-  double seconds = 0;      // wall time of the whole job
-  double compute_s = 0;    // drop-cutting only
+  double seconds = 0;    // wall time of the whole job
+  double compute_s = 0;  // drop-cutting only
   std::uint64_t peak_rss_bytes = 0;
 };
 

@@ -7,16 +7,19 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
+#include <nlohmann/json.hpp>
 
 namespace ncpath::jobs {
 
 const char* operation_name(Operation op) {
   switch (op) {
-    case Operation::kRaster: return "raster";
-    case Operation::kDrop: return "drop";
-    case Operation::kOffset: return "offset";
+    case Operation::kRaster:
+      return "raster";
+    case Operation::kDrop:
+      return "drop";
+    case Operation::kOffset:
+      return "offset";
   }
   return "?";
 }
@@ -138,8 +141,7 @@ class Keys {
   // Call once every known key was read.
   void finish() {
     for (const auto& [k, v] : t_)
-      if (!used_.count(std::string(k.str())))
-        fail(std::string(k.str()), "is not a known key");
+      if (!used_.count(std::string(k.str()))) fail(std::string(k.str()), "is not a known key");
   }
   std::string error;
 
@@ -167,7 +169,8 @@ void parse_raster_params(Keys& k, RasterParams& p) {
   k.number("step", p.step);
   k.number("margin", p.margin);
   double rect[4];
-  if (k.numbers("rect", 4, rect)) p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
+  if (k.numbers("rect", 4, rect))
+    p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
   k.number("adaptive_tolerance", p.adaptive_tolerance);
   k.number("min_step", p.min_step);
   double floor_z;
@@ -302,7 +305,8 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
   std::set<std::string> names;
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const toml::table* t = (*arr)[i].as_table();
-    if (!t) throw std::runtime_error(source_name + ": job " + std::to_string(i + 1) + " is not a table");
+    if (!t)
+      throw std::runtime_error(source_name + ": job " + std::to_string(i + 1) + " is not a table");
     JobSpec job = parse_job(*t, i, base_dir);
     if (!names.insert(job.name).second) {
       job.error = "job name '" + job.name + "' is used twice";

@@ -32,25 +32,25 @@ enum class Operation : std::uint8_t { kRaster, kDrop, kOffset };
 
 // The offset operation (pocket offset loops, no linking yet).
 struct OffsetParams {
-  double stepover = 0;          // mm; from "stepover = 2.4" or "stepover = \"40%\"" (of D)
-  double stock = 0;             // mm left on walls and islands
-  double depth = 0;             // mm below z = 0 at which the loops are written as paths
-  double tolerance = 0.01;      // mm: NURBS to arcs, and arcs to polylines for the paths
-  double join_tolerance = 1e-6; // mm: profile end points closer than this are joined
+  double stepover = 0;           // mm; from "stepover = 2.4" or "stepover = \"40%\"" (of D)
+  double stock = 0;              // mm left on walls and islands
+  double depth = 0;              // mm below z = 0 at which the loops are written as paths
+  double tolerance = 0.01;       // mm: NURBS to arcs, and arcs to polylines for the paths
+  double join_tolerance = 1e-6;  // mm: profile end points closer than this are joined
 };
 
 struct JobSpec {
   std::string name;
   Operation operation = Operation::kRaster;
-  std::filesystem::path input;    // mesh: STL or OFF
-  std::filesystem::path points;   // drop: CSV of "x,y" lines (blank line = new path)
+  std::filesystem::path input;   // mesh: STL or OFF
+  std::filesystem::path points;  // drop: CSV of "x,y" lines (blank line = new path)
   MeshTransform transform;
-  std::string tool_text;          // as the user wrote it, e.g. "ball:5"
+  std::string tool_text;  // as the user wrote it, e.g. "ball:5"
   Cutter tool;
   RasterParams raster;
   OffsetParams offset;
-  std::string error;              // non-empty: the spec is invalid; status + message below
-  std::string error_status;       // "invalid_parameter"
+  std::string error;         // non-empty: the spec is invalid; status + message below
+  std::string error_status;  // "invalid_parameter"
 };
 
 struct BatchSpec {

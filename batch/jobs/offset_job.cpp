@@ -22,8 +22,9 @@ io::ProfileSoup read_profile(const std::filesystem::path& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".dxf") return io::read_dxf(path);
   if (ext == ".toml") return io::read_profile_toml(path);
-  throw io::ReadError(path, "", "unknown profile format '" + ext +
-                                    "' (expected .dxf or .toml, see docs/profile-format.md)");
+  throw io::ReadError(
+      path, "",
+      "unknown profile format '" + ext + "' (expected .dxf or .toml, see docs/profile-format.md)");
 }
 
 }  // namespace
@@ -35,8 +36,7 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
   const io::ProfileSoup soup = read_profile(job.input);
   const ChainResult chained =
       chain_and_nest(soup.curves, soup.nurbs, soup.sources, job.offset.join_tolerance);
-  if (!chained.error.empty())
-    throw io::ReadError(job.input, "", chained.error);
+  if (!chained.error.empty()) throw io::ReadError(job.input, "", chained.error);
   stats.push_back({"profile_curves", i64(soup.curves.size()), ""});
   stats.push_back({"zero_length_dropped", i64(soup.zero_length_dropped), ""});
   stats.push_back({"warnings", i64(soup.warnings.size()), ""});

@@ -38,9 +38,8 @@ void write_whole(detail::FileState& s, const std::string& group, const std::stri
   if (exists > 0)
     throw std::invalid_argument("write_array: '" + group + "/" + name + "' written twice");
   const hsize_t rows = data.size() / width;
-  const hsize_t chunk_rows =
-      std::max<hsize_t>(1, std::min<hsize_t>(std::max<hsize_t>(rows, 1),
-                                             kArrayChunkBytes / (sizeof(T) * width)));
+  const hsize_t chunk_rows = std::max<hsize_t>(
+      1, std::min<hsize_t>(std::max<hsize_t>(rows, 1), kArrayChunkBytes / (sizeof(T) * width)));
   h5::Handle ds =
       h5::create_appendable(g.get(), name.c_str(), type, cols, chunk_rows, kArrayDeflate, s.ctx);
   if (rows > 0) {
@@ -62,14 +61,14 @@ void ClJob::write_array(const std::string& group, const std::string& name,
               H5T_NATIVE_DOUBLE);
 }
 void ClJob::write_array(const std::string& group, const std::string& name,
-                        std::span<const std::int64_t> data, std::size_t cols,
-                        std::string_view unit, std::string_view description) {
+                        std::span<const std::int64_t> data, std::size_t cols, std::string_view unit,
+                        std::string_view description) {
   write_whole(open_file("write_array"), group, name, data, cols, unit, description,
               H5T_NATIVE_INT64);
 }
 void ClJob::write_array(const std::string& group, const std::string& name,
-                        std::span<const std::uint8_t> data, std::size_t cols,
-                        std::string_view unit, std::string_view description) {
+                        std::span<const std::uint8_t> data, std::size_t cols, std::string_view unit,
+                        std::string_view description) {
   write_whole(open_file("write_array"), group, name, data, cols, unit, description,
               H5T_NATIVE_UINT8);
 }

@@ -134,8 +134,8 @@ double distance(const Seg2& s0, const Seg2& s1) {
   SegHit hits[2];
   // Crossing points are computed, so they lie on the curves only up to rounding.
   if (intersect(s0, s1, hits, 1e-12 * (1 + s0.a.norm()), false) > 0) return 0.0;
-  double d = std::min({distance(s0, s1.a), distance(s0, s1.b), distance(s1, s0.a),
-                       distance(s1, s0.b)});
+  double d =
+      std::min({distance(s0, s1.a), distance(s0, s1.b), distance(s1, s0.a), distance(s1, s0.b)});
   // Interior-interior minima: along the line through the centres (arc-arc) or the
   // perpendicular from the centre (line-arc).
   auto arc_points_towards = [](const Seg2& arc, const Vec2& target, Vec2 out[2]) {

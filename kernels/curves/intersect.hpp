@@ -15,8 +15,7 @@ struct SegHit {
 // segment count as on it (end points included). Returns the number written to hits.
 // With want_params == false, t0 and t1 are left 0 (callers that filter hits first compute
 // parameters only for the hits they keep: it costs trigonometry on arcs).
-int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps,
-              bool want_params = true);
+int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps, bool want_params = true);
 
 // Parameter of the point of s closest to p, in [0, 1] by arc length.
 double parameter_of(const Seg2& s, const Vec2& p);

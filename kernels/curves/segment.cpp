@@ -11,7 +11,9 @@ namespace {
 inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
 // Angle of p - c, radians in (-pi, pi].
-inline double angle_of(const Vec2& p, const Vec2& c) { return std::atan2(p.y() - c.y(), p.x() - c.x()); }
+inline double angle_of(const Vec2& p, const Vec2& c) {
+  return std::atan2(p.y() - c.y(), p.x() - c.x());
+}
 
 }  // namespace
 
@@ -77,14 +79,15 @@ double area2_contribution(const Seg2& s) {
   double v = cross(s.a, s.b);
   if (s.is_arc()) {
     // Twice the circular segment between chord and arc: r^2 (theta - sin theta).
-    const double cr = cross(s.a - s.c, s.b - s.c);  // r^2 sin(theta)
+    const double cr = cross(s.a - s.c, s.b - s.c);    // r^2 sin(theta)
     const double x = 0.5 * (s.b - s.a).norm() / s.r;  // sin(|theta| / 2)
     if (x < 0.05 && cr * s.turn() > 0) {
       // Small minor arc (most arcs of real profiles and offsets): series in x, no
       // trigonometry. |theta|/2 = asin x; theta - sin theta = t^3/6 - t^5/120 + t^7/5040
       // - t^9/362880 with t = |theta|; truncation error below 1e-17 relative.
       const double x2 = x * x;
-      const double half = x * (1 + x2 * (1.0 / 6 + x2 * (3.0 / 40 + x2 * (5.0 / 112 + x2 * 35.0 / 1152))));
+      const double half =
+          x * (1 + x2 * (1.0 / 6 + x2 * (3.0 / 40 + x2 * (5.0 / 112 + x2 * 35.0 / 1152))));
       const double t = 2 * half, t2 = t * t;
       const double seg = t * t2 * (1.0 / 6 - t2 * (1.0 / 120 - t2 * (1.0 / 5040 - t2 / 362880)));
       v += s.turn() * s.r * s.r * seg;

@@ -33,9 +33,12 @@ std::string validate(const Cutter& c) {
 
 const char* cutter_type_name(CutterType type) {
   switch (type) {
-    case CutterType::kBall: return "ball";
-    case CutterType::kFlat: return "flat";
-    case CutterType::kBullNose: return "bullnose";
+    case CutterType::kBall:
+      return "ball";
+    case CutterType::kFlat:
+      return "flat";
+    case CutterType::kBullNose:
+      return "bullnose";
   }
   return "?";
 }

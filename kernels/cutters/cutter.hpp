@@ -46,7 +46,7 @@ inline double profile_height(const Cutter& c, double rho) {
 inline bool profile_height_at_least(const Cutter& c, double rho2, double delta) {
   const double r = c.corner_radius, a = c.radius - c.corner_radius;
   if (delta <= 0) return true;
-  if (delta > r) return false;               // the profile never rises more than r
+  if (delta > r) return false;                // the profile never rises more than r
   const double k2 = delta * (2 * r - delta);  // (rho - a)^2 at which h reaches delta
   if (a == 0) return rho2 >= k2;
   const double k = a + std::sqrt(k2);

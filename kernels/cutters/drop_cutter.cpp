@@ -11,10 +11,14 @@ namespace ncpath {
 
 const char* contact_kind_name(ContactKind kind) {
   switch (kind) {
-    case ContactKind::kNone: return "none";
-    case ContactKind::kVertex: return "vertex";
-    case ContactKind::kEdge: return "edge";
-    case ContactKind::kFacet: return "facet";
+    case ContactKind::kNone:
+      return "none";
+    case ContactKind::kVertex:
+      return "vertex";
+    case ContactKind::kEdge:
+      return "edge";
+    case ContactKind::kFacet:
+      return "facet";
   }
   return "?";
 }
@@ -63,12 +67,12 @@ inline double cross2(double ax, double ay, double bx, double by) { return ax * b
 // Which edge lines of the triangle (xy projection) have (x, y) strictly on their outer
 // side: bit k for edge p[k] -> p[k+1]. Zero means inside, boundary included.
 inline unsigned outside_edges_xy(const PreparedFacet& f, double x, double y) {
-  const double d0 = cross2(f.p[1].x() - f.p[0].x(), f.p[1].y() - f.p[0].y(), x - f.p[0].x(),
-                           y - f.p[0].y());
-  const double d1 = cross2(f.p[2].x() - f.p[1].x(), f.p[2].y() - f.p[1].y(), x - f.p[1].x(),
-                           y - f.p[1].y());
-  const double d2 = cross2(f.p[0].x() - f.p[2].x(), f.p[0].y() - f.p[2].y(), x - f.p[2].x(),
-                           y - f.p[2].y());
+  const double d0 =
+      cross2(f.p[1].x() - f.p[0].x(), f.p[1].y() - f.p[0].y(), x - f.p[0].x(), y - f.p[0].y());
+  const double d1 =
+      cross2(f.p[2].x() - f.p[1].x(), f.p[2].y() - f.p[1].y(), x - f.p[1].x(), y - f.p[1].y());
+  const double d2 =
+      cross2(f.p[0].x() - f.p[2].x(), f.p[0].y() - f.p[2].y(), x - f.p[2].x(), y - f.p[2].y());
   const double s = f.xy_winding;
   return (s * d0 < 0 ? 1u : 0u) | (s * d1 < 0 ? 2u : 0u) | (s * d2 < 0 ? 4u : 0u);
 }
@@ -136,9 +140,8 @@ double bull_edge_sine(double a, double r, double d, double m) {
 // `k` is sqrt(1 + m^2). Contacts whose tip cannot exceed `above` are dismissed before any
 // square root: on the whole line the tip is at most z(u0) plus the cutter's rise on a
 // slope m, the tilted-plane height g(m) (ball R(k-1), flat |m|R, bull |m|a + r(k-1)).
-inline bool edge_contact(const Cutter& c, const Vec3& p, double ex, double ey, double len,
-                         double m, double k, double x, double y, double above, double& tip,
-                         Vec3& cc) {
+inline bool edge_contact(const Cutter& c, const Vec3& p, double ex, double ey, double len, double m,
+                         double k, double x, double y, double above, double& tip, Vec3& cc) {
   if (!(len > 0)) return false;
   const double R = c.radius;
   const double dx = x - p.x(), dy = y - p.y();
@@ -197,8 +200,8 @@ bool drop_on_plane(const Cutter& c, const PreparedFacet& f, double x, double y, 
   return true;
 }
 
-bool drop_on_edge(const Cutter& c, const Vec3& p, const Vec3& q, double x, double y,
-                  double& tip_z, Vec3& cc) {
+bool drop_on_edge(const Cutter& c, const Vec3& p, const Vec3& q, double x, double y, double& tip_z,
+                  Vec3& cc) {
   const double dx = q.x() - p.x(), dy = q.y() - p.y();
   const double l = std::hypot(dx, dy);
   if (!(l > 0)) return false;

@@ -25,16 +25,16 @@ const char* contact_kind_name(ContactKind kind);
 // nothing".
 struct CutterContact {
   double tip_z = -std::numeric_limits<double>::infinity();  // tool tip z, mm
-  Vec3 cc = Vec3::Zero();                                  // contact point on the part, mm
+  Vec3 cc = Vec3::Zero();                                   // contact point on the part, mm
   ContactKind kind = ContactKind::kNone;
   std::uint32_t facet = std::numeric_limits<std::uint32_t>::max();  // facet index
 };
 
 // Per-triangle data computed once per mesh (the engine builds a table of these).
 struct PreparedFacet {
-  Vec3 p[3];          // vertices, mm
-  Vec3 n;             // unit normal oriented so that n.z >= 0
-  double plane_d;     // n . p[0]
+  Vec3 p[3];                                        // vertices, mm
+  Vec3 n;                                           // unit normal oriented so that n.z >= 0
+  double plane_d;                                   // n . p[0]
   double min_x, max_x, min_y, max_y, min_z, max_z;  // bounding box, mm
   // Edge k runs p[k] -> p[(k+1)%3]. Horizontal unit direction, horizontal length, slope
   // dz/du and sqrt(1 + slope^2); len_xy == 0 marks a vertical edge (its vertices carry its
@@ -54,8 +54,8 @@ bool drop_facet(const Cutter& cutter, const PreparedFacet& f, double x, double y
 
 // The single-contact pieces, exposed for tests. Each returns false when that contact does
 // not exist at (x, y); otherwise writes the tip z and contact point.
-bool drop_on_plane(const Cutter& cutter, const PreparedFacet& f, double x, double y,
-                   double& tip_z, Vec3& cc);
+bool drop_on_plane(const Cutter& cutter, const PreparedFacet& f, double x, double y, double& tip_z,
+                   Vec3& cc);
 bool drop_on_edge(const Cutter& cutter, const Vec3& p, const Vec3& q, double x, double y,
                   double& tip_z, Vec3& cc);
 bool drop_on_vertex(const Cutter& cutter, const Vec3& v, double x, double y, double& tip_z);

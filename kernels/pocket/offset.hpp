@@ -36,12 +36,12 @@ struct OffsetLoop {
 };
 
 struct OffsetStats {
-  std::uint64_t raw_segments = 0;   // after joining
-  std::uint64_t intersections = 0;  // between raw segments
-  std::uint64_t pieces = 0;         // after splitting
-  std::uint64_t pieces_kept = 0;    // after validation
-  std::uint64_t open_fragments = 0; // kept pieces that did not close into a loop (dropped)
-  std::uint64_t dropped_holes = 0;  // counter-clockwise loops outside every boundary
+  std::uint64_t raw_segments = 0;    // after joining
+  std::uint64_t intersections = 0;   // between raw segments
+  std::uint64_t pieces = 0;          // after splitting
+  std::uint64_t pieces_kept = 0;     // after validation
+  std::uint64_t open_fragments = 0;  // kept pieces that did not close into a loop (dropped)
+  std::uint64_t dropped_holes = 0;   // counter-clockwise loops outside every boundary
 };
 
 struct OffsetResult {

@@ -40,15 +40,16 @@ std::vector<std::vector<std::uint32_t>> group_regions_of(std::size_t n, Loop loo
 }  // namespace
 
 std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLoop>& loops) {
-  return group_regions_of(loops.size(), [&](std::size_t k) -> const OffsetLoop& { return loops[k]; });
+  return group_regions_of(loops.size(),
+                          [&](std::size_t k) -> const OffsetLoop& { return loops[k]; });
 }
 
 void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& task) {
   for (std::size_t i = 0; i < n; ++i) task(i);
 }
 
-OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first,
-                           double step, std::uint32_t max_levels, const ForEach& for_each) {
+OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first, double step,
+                           std::uint32_t max_levels, const ForEach& for_each) {
   return offset_levels_from(offset_loops(input, first), step, max_levels, for_each);
 }
 

@@ -24,14 +24,14 @@ namespace ncpath {
 std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLoop>& loops);
 
 struct LevelLoop {
-  OffsetLoop loop;  // loop.parents: indices into OffsetLevels::loops of the level above
+  OffsetLoop loop;          // loop.parents: indices into OffsetLevels::loops of the level above
   std::uint32_t level = 0;  // 1 = first offset of the input
 };
 
 struct OffsetLevels {
-  std::vector<LevelLoop> loops;        // level by level, in a deterministic order
+  std::vector<LevelLoop> loops;            // level by level, in a deterministic order
   std::vector<std::uint32_t> level_start;  // loops of level k: [level_start[k-1], level_start[k])
-  std::uint64_t open_fragments = 0;    // summed over all levels (0 when all is well)
+  std::uint64_t open_fragments = 0;        // summed over all levels (0 when all is well)
 };
 
 // Runs task(i) for every i in [0, n); tasks are independent and write only their own slot.
@@ -42,8 +42,8 @@ void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& 
 
 // input: closed loops, material on the right. Stops after max_levels. Output is the same
 // whatever `for_each` runs the regions with.
-OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first,
-                           double step, std::uint32_t max_levels = 1000000,
+OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first, double step,
+                           std::uint32_t max_levels = 1000000,
                            const ForEach& for_each = sequential_for_each);
 // The same from a given first level (e.g. offset_prepared with Tiller-Hanson offsets).
 OffsetLevels offset_levels_from(OffsetResult first_level, double step,

@@ -34,9 +34,8 @@ CmdResult ncpath(const std::string& args) {
 
 std::filesystem::path fixture_dir() {
   const auto dir = h5::out_dir("cli");
-  const TriangleMesh m = test::height_field(20, 40, [](double x, double y) {
-    return 2 + std::sin(x / 5) * std::cos(y / 4);
-  });
+  const TriangleMesh m = test::height_field(
+      20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
   io::write_binary_stl(dir / "part.stl", m);
   std::ofstream(dir / "xy.csv") << "# x,y\n1,1\n20,20\n\n500,500\n";
   return dir;
@@ -76,7 +75,8 @@ params = { points = "xy.csv" }
   EXPECT_NE(h5::attr_str(good, "params").find("\"interval\":2.0"), std::string::npos);
   EXPECT_NE(h5::attr_str(good, "tool").find("\"diameter_mm\":4.0"), std::string::npos);
   EXPECT_EQ(h5::attr_str(good, "input_sha256").size(), 64u);
-  const auto offsets = h5::read_all<std::int64_t>(f, "/jobs/good/cl/path_offsets", H5T_NATIVE_INT64);
+  const auto offsets =
+      h5::read_all<std::int64_t>(f, "/jobs/good/cl/path_offsets", H5T_NATIVE_INT64);
   // 40 / 2 + 1 = 21 lines of 40 / 0.5 + 1 = 81 points, 20 links in between.
   EXPECT_EQ(offsets.size(), 21u + 20u + 1u);
   EXPECT_EQ(offsets[1], 81);
@@ -88,7 +88,8 @@ params = { points = "xy.csv" }
   EXPECT_NE(h5::attr_str(bad, "message").find("corner radius 3"), std::string::npos);
   // Drop: input order kept, the miss flagged with NaN and contact 0.
   const auto pts = h5::read_all<double>(f, "/jobs/points/cl/points", H5T_NATIVE_DOUBLE);
-  const auto kinds = h5::read_all<std::uint8_t>(f, "/jobs/points/cl/contact_kind", H5T_NATIVE_UINT8);
+  const auto kinds =
+      h5::read_all<std::uint8_t>(f, "/jobs/points/cl/contact_kind", H5T_NATIVE_UINT8);
   const auto poff = h5::read_all<std::int64_t>(f, "/jobs/points/cl/path_offsets", H5T_NATIVE_INT64);
   ASSERT_EQ(pts.size(), 9u);
   EXPECT_EQ(poff, (std::vector<std::int64_t>{0, 2, 3}));  // the blank line split the paths
@@ -101,9 +102,10 @@ params = { points = "xy.csv" }
 TEST(Cli, OneAndTwoThreadsWriteIdenticalDatasets) {
   const auto dir = fixture_dir();
   for (const char* t : {"1", "2"}) {
-    const CmdResult r = ncpath("raster --mesh " + (dir / "part.stl").string() +
-                         " --tool bull:6:1 --interval 0.7 --step 0.2 --adaptive 0.002 --threads " +
-                         t + " --quiet --out " + (dir / (std::string("t") + t + ".h5")).string());
+    const CmdResult r =
+        ncpath("raster --mesh " + (dir / "part.stl").string() +
+               " --tool bull:6:1 --interval 0.7 --step 0.2 --adaptive 0.002 --threads " + t +
+               " --quiet --out " + (dir / (std::string("t") + t + ".h5")).string());
     ASSERT_EQ(r.exit_code, 0) << r.output;
   }
   h5::Id a = h5::open_read(dir / "t1.h5");
@@ -122,8 +124,8 @@ TEST(Cli, OneAndTwoThreadsWriteIdenticalDatasets) {
 
 TEST(Cli, BadCommandLinesAreRejectedWithTheKey) {
   const auto dir = fixture_dir();
-  const std::string mesh = " --mesh " + (dir / "part.stl").string() + " --quiet --out " +
-                           (dir / "x.h5").string();
+  const std::string mesh =
+      " --mesh " + (dir / "part.stl").string() + " --quiet --out " + (dir / "x.h5").string();
   CmdResult r = ncpath("raster" + mesh + " --step 0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("step must be a positive number"), std::string::npos) << r.output;
@@ -149,12 +151,13 @@ segments = [ { line = [[0, 0], [100, 0]] }, { line_to = [100, 60] }, { line_to =
 center = [50, 30]
 radius = 5
 )";
-  const CmdResult r = ncpath("offset --profile " + (dir / "pocket.toml").string() +
-                             " --tool flat:6 --stepover 50% --depth 2 --quiet --out " +
-                             (dir / "off.h5").string());
+  const CmdResult r =
+      ncpath("offset --profile " + (dir / "pocket.toml").string() +
+             " --tool flat:6 --stepover 50% --depth 2 --quiet --out " + (dir / "off.h5").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "off.h5");
-  const auto level = h5::read_all<std::int64_t>(f, "/jobs/offset/offset/loop_level", H5T_NATIVE_INT64);
+  const auto level =
+      h5::read_all<std::int64_t>(f, "/jobs/offset/offset/loop_level", H5T_NATIVE_INT64);
   const auto area = h5::read_all<double>(f, "/jobs/offset/offset/loop_area", H5T_NATIVE_DOUBLE);
   ASSERT_GE(level.size(), 2u);
   // Level 1 at d = 3: the rectangle 94 x 54 and the island grown to radius 8.
@@ -162,14 +165,16 @@ radius = 5
   EXPECT_NEAR(area[0] + area[1], -94.0 * 54.0 + M_PI * 64, 1e-6);
   const auto pts = h5::read_all<double>(f, "/jobs/offset/cl/points", H5T_NATIVE_DOUBLE);
   EXPECT_EQ(pts[2], -2.0);  // written at the depth
-  const auto edges = h5::read_all<std::int64_t>(f, "/jobs/offset/offset/ogh_edges", H5T_NATIVE_INT64);
+  const auto edges =
+      h5::read_all<std::int64_t>(f, "/jobs/offset/offset/ogh_edges", H5T_NATIVE_INT64);
   EXPECT_GT(edges.size(), 0u);
   for (std::size_t k = 0; k + 1 < edges.size(); k += 2)
     EXPECT_EQ(level[edges[k]], level[edges[k + 1]] + 1);  // a parent is one level up
   // A profile that does not close is reported with the entity.
   std::ofstream(dir / "open.toml") << "[[polyline]]\npoints = [[0,0],[10,0],[10,10]]\n";
-  const CmdResult bad = ncpath("offset --profile " + (dir / "open.toml").string() +
-                               " --tool flat:6 --stepover 2 --quiet --out " + (dir / "bad.h5").string());
+  const CmdResult bad =
+      ncpath("offset --profile " + (dir / "open.toml").string() +
+             " --tool flat:6 --stepover 2 --quiet --out " + (dir / "bad.h5").string());
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("invalid_input"), std::string::npos) << bad.output;
 }

@@ -30,8 +30,7 @@ void expect_index_matches_brute_force(const TriangleMesh& mesh, int points, unsi
           << cutter_type_name(c.type) << " at " << x << "," << y;
       if (slow.kind == ContactKind::kNone) continue;
       ++touched;
-      ASSERT_NEAR(fast.tip_z, slow.tip_z, 1e-9) << cutter_type_name(c.type) << " " << x << ","
-                                                << y;
+      ASSERT_NEAR(fast.tip_z, slow.tip_z, 1e-9) << cutter_type_name(c.type) << " " << x << "," << y;
     }
     EXPECT_GT(touched, points / 2);
   }

@@ -17,9 +17,7 @@ TEST(DropPoints, SameOrderAndMissesAreFlaggedNotInvented) {
   ClChunk got;
   RunControl control;
   const DropPointsStats st = run_drop_points(
-      mesh, ball_cutter(2), xy, paths,
-      [&](const ClChunk& c) { got.append(c); },
-      control);
+      mesh, ball_cutter(2), xy, paths, [&](const ClChunk& c) { got.append(c); }, control);
   EXPECT_EQ(st.points, 5u);
   EXPECT_EQ(st.no_contact, 2u);
   EXPECT_EQ(got.path_sizes, paths);

@@ -33,7 +33,8 @@ TEST(PocketOffset, RectangleLevelsAndAreas) {
     const double d = 3 + 2.0 * k;
     EXPECT_EQ(res.loops[k].level, k + 1);
     EXPECT_NEAR(-res.loops[k].loop.area2 / 2, (100 - 2 * d) * (60 - 2 * d), 1e-9);
-    if (k > 0) EXPECT_EQ(res.loops[k].loop.parents, std::vector<std::uint32_t>{std::uint32_t(k - 1)});
+    if (k > 0)
+      EXPECT_EQ(res.loops[k].loop.parents, std::vector<std::uint32_t>{std::uint32_t(k - 1)});
   }
 }
 
@@ -130,7 +131,8 @@ TEST(PocketOffset, OffsetEqualToNurbsCurvatureRadius) {
   const double w = std::sqrt(0.5);
   Nurbs2 c;  // rational quadratic full circle of radius 10, clockwise
   c.degree = 2;
-  c.ctrl = {{10, 0}, {10, -10}, {0, -10}, {-10, -10}, {-10, 0}, {-10, 10}, {0, 10}, {10, 10}, {10, 0}};
+  c.ctrl = {{10, 0},   {10, -10}, {0, -10}, {-10, -10}, {-10, 0},
+            {-10, 10}, {0, 10},   {10, 10}, {10, 0}};
   c.weights = {1, w, 1, w, 1, w, 1, w, 1};
   c.knots = {0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 4};
   ASSERT_EQ(validate(c), "");

@@ -115,8 +115,8 @@ TEST(Raster, OneAndManyThreadsGiveIdenticalBytes) {
     run(mesh, bull_nose_cutter(4, 1), p, many);
   }
   ASSERT_EQ(one.all.xyz.size(), many.all.xyz.size());
-  EXPECT_EQ(0, std::memcmp(one.all.xyz.data(), many.all.xyz.data(),
-                           one.all.xyz.size() * sizeof(double)));
+  EXPECT_EQ(
+      0, std::memcmp(one.all.xyz.data(), many.all.xyz.data(), one.all.xyz.size() * sizeof(double)));
   EXPECT_EQ(one.all.contact, many.all.contact);
   EXPECT_EQ(one.all.path_sizes, many.all.path_sizes);
 }
@@ -185,7 +185,8 @@ TEST(Raster, CancelStopsTheRun) {
   const TriangleMesh mesh = bumpy();
   RunControl control;
   control.cancel = true;
-  EXPECT_THROW(run_raster(mesh, ball_cutter(4), RasterParams{}, [](const ClChunk&) {}, control),
+  EXPECT_THROW(run_raster(
+                   mesh, ball_cutter(4), RasterParams{}, [](const ClChunk&) {}, control),
                Cancelled);
 }
 

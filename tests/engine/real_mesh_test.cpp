@@ -72,8 +72,7 @@ TEST_P(RealMesh, RasterEqualsBruteForce) {
     for (std::size_t k = 0; k < xyz.size(); k += 3) {
       const CutterContact bf = drop_brute_force(table, c, xyz[k], xyz[k + 1]);
       ASSERT_NEAR(xyz[k + 2], std::max(bf.tip_z, floor_z), 1e-9)
-          << GetParam() << " " << cutter_type_name(c.type) << " at " << xyz[k] << ","
-          << xyz[k + 1];
+          << GetParam() << " " << cutter_type_name(c.type) << " at " << xyz[k] << "," << xyz[k + 1];
       ++checked;
     }
     EXPECT_GE(checked, 10000u);

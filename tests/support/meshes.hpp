@@ -39,8 +39,7 @@ inline TriangleMesh random_soup(int count, double size, double height, double tr
   TriangleMesh m;
   for (int k = 0; k < count; ++k) {
     const Vec3 c{U(rng) * size, U(rng) * size, U(rng) * height};
-    for (int v = 0; v < 3; ++v)
-      m.vertices.push_back(c + tri_size * Vec3{D(rng), D(rng), D(rng)});
+    for (int v = 0; v < 3; ++v) m.vertices.push_back(c + tri_size * Vec3{D(rng), D(rng), D(rng)});
     const auto b = static_cast<std::uint32_t>(3 * k);
     m.facets.push_back({b, b + 1, b + 2});
   }

@@ -57,8 +57,7 @@ inline double golden_max(const std::function<double(double)>& f, double lo, doub
 
 // Highest tip over the points of segment pq inside the tool's disc (concave in the
 // segment parameter, so golden section finds it), or -inf.
-inline double tip_for_segment(double R, double r, const V3& p, const V3& q, double x,
-                              double y) {
+inline double tip_for_segment(double R, double r, const V3& p, const V3& q, double x, double y) {
   // Clip the segment's xy projection to the disc |xy - (x, y)| <= R.
   const double dx = q.x() - p.x(), dy = q.y() - p.y();
   const double fx = p.x() - x, fy = p.y() - y;
@@ -84,8 +83,8 @@ inline double tip_for_segment(double R, double r, const V3& p, const V3& q, doub
 
 // Lower bound on the true drop height against triangle abc: vertices, edges (golden
 // section) and an n x n barycentric grid of interior points. The exact answer is >= this.
-inline double tip_lower_bound(double R, double r, const V3& a, const V3& b, const V3& c,
-                              double x, double y, int n = 40) {
+inline double tip_lower_bound(double R, double r, const V3& a, const V3& b, const V3& c, double x,
+                              double y, int n = 40) {
   double best = -std::numeric_limits<double>::infinity();
   best = std::max(best, tip_for_segment(R, r, a, b, x, y));
   best = std::max(best, tip_for_segment(R, r, b, c, x, y));

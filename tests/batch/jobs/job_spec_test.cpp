@@ -53,8 +53,7 @@ TEST(JobSpec, ParsesEveryKeyOfAGoodBatch) {
   // Defaults appear in the params JSON.
   EXPECT_NE(params_json(d).find("\"points\""), std::string::npos);
   EXPECT_NE(params_json(b.jobs[0]).find("\"min_step\":0.0"), std::string::npos);
-  EXPECT_EQ(tool_json(a.tool),
-            R"({"type":"bullnose","diameter_mm":10.0,"corner_radius_mm":2.0})");
+  EXPECT_EQ(tool_json(a.tool), R"({"type":"bullnose","diameter_mm":10.0,"corner_radius_mm":2.0})");
 }
 
 std::string job_error(const std::string& job_body) {

@@ -45,8 +45,8 @@ TEST(DropCutter, TiltedPlaneMatchesClosedForms) {
     const double R = 5, r = 2, a = 3;
     EXPECT_NEAR(drop_tri(ball_cutter(10), A, B, C, x, y).tip_z, z + R / cosa - R, kTol);
     EXPECT_NEAR(drop_tri(flat_cutter(10), A, B, C, x, y).tip_z, z + R * g, kTol);
-    EXPECT_NEAR(drop_tri(bull_nose_cutter(10, 2), A, B, C, x, y).tip_z,
-                z + a * g + r / cosa - r, kTol);
+    EXPECT_NEAR(drop_tri(bull_nose_cutter(10, 2), A, B, C, x, y).tip_z, z + a * g + r / cosa - r,
+                kTol);
   }
 }
 
@@ -88,8 +88,7 @@ TEST(DropCutter, VerticalWallTopEdge) {
       CutterContact best;
       drop_facet(cut, f[0], d, 0.5, 0, best);
       drop_facet(cut, f[1], d, 0.5, 1, best);
-      EXPECT_NEAR(best.tip_z,
-                  7 - test::h_profile(cut.radius, cut.corner_radius, d), kTol)
+      EXPECT_NEAR(best.tip_z, 7 - test::h_profile(cut.radius, cut.corner_radius, d), kTol)
           << cutter_type_name(cut.type) << " d=" << d;
     }
     CutterContact none = drop_tri(cut, a, b, c, 5.01, 0.5);

@@ -18,8 +18,7 @@ double area(const OffsetLoop& l) { return l.area2 / 2; }
 
 // Every sampled point of every result loop is exactly d from the input (closest input
 // segment), computed with the segment distance, independent of the offset code path.
-void expect_at_distance(const OffsetResult& r, const std::vector<std::vector<Seg2>>& in,
-                        double d) {
+void expect_at_distance(const OffsetResult& r, const std::vector<std::vector<Seg2>>& in, double d) {
   for (const OffsetLoop& l : r.loops)
     for (const Seg2& s : l.segs)
       for (double t : {0.0, 0.25, 0.5, 0.75}) {
@@ -162,10 +161,13 @@ TEST(Offset, ReversedInputDirectionGivesTheSameRegion) {
 TEST(Offset, CollinearDuplicateAndTinySegments) {
   // A rectangle whose bottom side is cut into pieces, one of 1e-7 mm, plus a duplicate
   // vertex (zero-length segment).
-  std::vector<Seg2> l = {make_line({0, 0}, {30, 0}), make_line({30, 0}, {30.0000001, 0}),
+  std::vector<Seg2> l = {make_line({0, 0}, {30, 0}),
+                         make_line({30, 0}, {30.0000001, 0}),
                          make_line({30.0000001, 0}, {30.0000001, 0}),
-                         make_line({30.0000001, 0}, {100, 0}), make_line({100, 0}, {100, 50}),
-                         make_line({100, 50}, {0, 50}), make_line({0, 50}, {0, 0})};
+                         make_line({30.0000001, 0}, {100, 0}),
+                         make_line({100, 0}, {100, 50}),
+                         make_line({100, 50}, {0, 50}),
+                         make_line({0, 50}, {0, 0})};
   std::vector<Seg2> cw;
   for (auto it = l.rbegin(); it != l.rend(); ++it) cw.push_back(reversed(*it));
   const OffsetResult r = offset_loops({cw}, 5);

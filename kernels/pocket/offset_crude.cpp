@@ -1,0 +1,177 @@
+#include "kernels/pocket/offset_crude.hpp"
+
+#include <cmath>
+
+#include "kernels/curves/intersect.hpp"
+#include "kernels/geom/tolerance.hpp"
+
+namespace ncpath::pocket_detail {
+
+namespace {
+
+inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+
+}  // namespace
+
+// Consecutive segments `first` and `second` share the joint first.b == second.a. False
+// when they cannot meet anywhere else, decided without computing intersections: two lines
+// only meet again when they fold back on each other; a line and a circle through the joint
+// meet at one more point, the reflection of the joint along the line; two circles through
+// the joint meet at its mirror image across the line of centres.
+bool adjacent_may_cross(const Seg2& first, const Seg2& second) {
+  const Vec2& p = first.b;
+  if (!first.is_arc() && !second.is_arc()) return (first.b - first.a).dot(second.b - second.a) < 0;
+  Vec2 q;
+  if (first.is_arc() != second.is_arc()) {
+    const Seg2& arc = first.is_arc() ? first : second;
+    const Seg2& line = first.is_arc() ? second : first;
+    const Vec2 d = line.b - line.a;
+    const double l2 = d.squaredNorm();
+    if (l2 == 0) return false;
+    // Second point of the line through p on the circle: p + s d, s = -2 (p - c).d / |d|^2;
+    // on the line segment only for s in [-1, 0] (p is its end) or [0, 1] (p its start).
+    const double sp = -2 * (p - arc.c).dot(d) / l2;
+    const double slack = tol::kOffsetJoint / std::sqrt(l2);
+    if (first.is_arc() ? (sp < -slack || sp > 1 + slack) : (sp < -1 - slack || sp > slack))
+      return false;
+    q = p + sp * d;
+  } else {
+    const Vec2 u = second.c - first.c;
+    const double l2 = u.squaredNorm();
+    if (l2 == 0) return true;  // concentric through one point: the same circle, let it be
+    const Vec2 w = p - first.c;
+    q = first.c + (2 * w.dot(u) / l2) * u - w;  // mirror of p across the centre line
+  }
+  if ((q - p).norm() <= tol::kOffsetJoint) return false;
+  return distance(first, q) <= tol::kOffsetJoint && distance(second, q) <= tol::kOffsetJoint;
+}
+
+namespace {
+
+// Moves an end of s to p (end = true: s.b, else s.a). An arc whose new end lands just
+// behind its other end would turn the long way round the circle; such a sliver becomes the
+// straight piece it really is.
+void move_end(Seg2& s, const Vec2& p, bool end) {
+  if (!s.is_arc() || arc_contains_angle(s, p)) {  // the common case: no trigonometry
+    (end ? s.b : s.a) = p;
+    return;
+  }
+  const double before = std::abs(sweep(s));
+  (end ? s.b : s.a) = p;
+  if (std::abs(sweep(s)) > before + 1e-6) s.kind = SegKind::kLine;
+}
+
+// Crossing of the unbounded carriers of two segments (lines, full circles) nearest to v.
+bool extended_crossing(const Seg2& s0, const Seg2& s1, const Vec2& v, Vec2& out) {
+  Vec2 cand[2];
+  int n = 0;
+  if (!s0.is_arc() && !s1.is_arc()) {
+    const Vec2 d0 = s0.b - s0.a, d1 = s1.b - s1.a;
+    const double den = cross(d0, d1);
+    if (den == 0) return false;
+    cand[n++] = s0.a + (cross(s1.a - s0.a, d1) / den) * d0;
+  } else {
+    // Treat a line as the chord of a huge circle is not needed: intersect exactly.
+    const Seg2& a = s0.is_arc() ? s0 : s1;
+    const Seg2& b = s0.is_arc() ? s1 : s0;
+    if (!b.is_arc()) {
+      const Vec2 d = b.b - b.a;
+      const double l = d.norm();
+      if (l == 0) return false;
+      const Vec2 u = d / l;
+      const Vec2 foot = b.a + (a.c - b.a).dot(u) * u;
+      const double h2 = a.r * a.r - (a.c - foot).squaredNorm();
+      if (h2 < 0) return false;
+      const double h = std::sqrt(h2);
+      cand[n++] = foot - h * u;
+      cand[n++] = foot + h * u;
+    } else {
+      const Vec2 d = b.c - a.c;
+      const double l = d.norm();
+      if (l == 0) return false;
+      const double x = (l * l + a.r * a.r - b.r * b.r) / (2 * l);
+      const double h2 = a.r * a.r - x * x;
+      if (h2 < 0) return false;
+      const Vec2 u = d / l, w(-u.y(), u.x());
+      const double h = std::sqrt(h2);
+      cand[n++] = a.c + x * u - h * w;
+      cand[n++] = a.c + x * u + h * w;
+    }
+  }
+  out = cand[0];
+  if (n == 2 && (cand[1] - v).norm() < (cand[0] - v).norm()) out = cand[1];
+  return true;
+}
+
+// Joins `prev` (its end) to `next` (its start) around the original vertex v; may trim
+// both, and may append a joining segment to out.
+void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
+  // Ends that (nearly) meet are made to meet: a joining piece shorter than kOffsetJoint
+  // would only be a rounding artefact, and would turn back on itself one level later.
+  const double eps = tol::kOffsetPoint;
+  if ((prev.b - next.a).norm() <= tol::kOffsetJoint) {
+    move_end(next, prev.b, false);
+    return;
+  }
+  const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
+  const double c = cross(te, ts);
+  if (c > 0 || (std::abs(c) <= 1e-15 && te.dot(ts) < 0)) {
+    // Left turn: the material side opens; the true offset is the arc around v.
+    out.push_back(make_arc(prev.b, next.a, v, true, prev.source));
+    out.back().r = (prev.b - v).norm();
+    return;
+  }
+  // Right turn: the offsets overlap; trim both at their intersection nearest to v.
+  SegHit hits[2];
+  const int n = intersect(prev, next, hits, eps);
+  if (n > 0) {
+    int best = 0;
+    if (n == 2 && (hits[1].p - v).norm() < (hits[0].p - v).norm()) best = 1;
+    move_end(prev, hits[best].p, true);
+    move_end(next, hits[best].p, false);
+    return;
+  }
+  // Nearly parallel ends (a corner of a few micro-radians) cross just past an end, where
+  // the bounded intersection test cannot see it: meet at the crossing of the extended
+  // curves when it is that close.
+  Vec2 p;
+  const double gap = (prev.b - next.a).norm();
+  if (gap <= 1e-3 * (prev.b - v).norm() && extended_crossing(prev, next, v, p) &&
+      (p - prev.b).norm() <= 2 * gap + tol::kOffsetJoint) {
+    move_end(prev, p, true);
+    move_end(next, p, false);
+    return;
+  }
+  out.push_back(make_line(prev.b, next.a, prev.source));
+}
+
+}  // namespace
+
+// The crude offset loop of one input loop, appended to raw.
+// The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
+// raw.
+void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, std::vector<RawSeg>& raw) {
+  const std::size_t n = runs.runs();
+  if (n == 0) return;
+  // Join each consecutive pair of runs; a run is emitted once both its ends are settled.
+  // The last join (back to the first run) may still move the first run's start: the
+  // emitted copy is patched afterwards.
+  const auto base = static_cast<std::uint32_t>(raw.size());
+  std::vector<Seg2> joins;
+  for (std::size_t k = 0; k < n; ++k) {
+    joins.clear();
+    const std::size_t k1 = (k + 1) % n;
+    join(runs.segs[runs.start[k + 1] - 1], runs.segs[runs.start[k1]], runs.vertex[k1], joins);
+    for (std::uint32_t q = runs.start[k]; q < runs.start[k + 1]; ++q)
+      raw.push_back({runs.segs[q], loop_id, 0, 0, false});
+    for (const Seg2& js : joins) raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
+  }
+  raw[base].s = runs.segs[0];
+  const auto m = static_cast<std::uint32_t>(raw.size() - base);
+  for (std::uint32_t k = 0; k < m; ++k) {
+    raw[base + k].prev = base + (k + m - 1) % m;
+    raw[base + k].next = base + (k + 1) % m;
+  }
+}
+
+}  // namespace ncpath::pocket_detail
