@@ -13,39 +13,6 @@ inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y()
 
 }  // namespace
 
-// Consecutive segments `first` and `second` share the joint first.b == second.a. False
-// when they cannot meet anywhere else, decided without computing intersections: two lines
-// only meet again when they fold back on each other; a line and a circle through the joint
-// meet at one more point, the reflection of the joint along the line; two circles through
-// the joint meet at its mirror image across the line of centres.
-bool adjacent_may_cross(const Seg2& first, const Seg2& second) {
-  const Vec2& p = first.b;
-  if (!first.is_arc() && !second.is_arc()) return (first.b - first.a).dot(second.b - second.a) < 0;
-  Vec2 q;
-  if (first.is_arc() != second.is_arc()) {
-    const Seg2& arc = first.is_arc() ? first : second;
-    const Seg2& line = first.is_arc() ? second : first;
-    const Vec2 d = line.b - line.a;
-    const double l2 = d.squaredNorm();
-    if (l2 == 0) return false;
-    // Second point of the line through p on the circle: p + s d, s = -2 (p - c).d / |d|^2;
-    // on the line segment only for s in [-1, 0] (p is its end) or [0, 1] (p its start).
-    const double sp = -2 * (p - arc.c).dot(d) / l2;
-    const double slack = tol::kOffsetJoint / std::sqrt(l2);
-    if (first.is_arc() ? (sp < -slack || sp > 1 + slack) : (sp < -1 - slack || sp > slack))
-      return false;
-    q = p + sp * d;
-  } else {
-    const Vec2 u = second.c - first.c;
-    const double l2 = u.squaredNorm();
-    if (l2 == 0) return true;  // concentric through one point: the same circle, let it be
-    const Vec2 w = p - first.c;
-    q = first.c + (2 * w.dot(u) / l2) * u - w;  // mirror of p across the centre line
-  }
-  if ((q - p).norm() <= tol::kOffsetJoint) return false;
-  return distance(first, q) <= tol::kOffsetJoint && distance(second, q) <= tol::kOffsetJoint;
-}
-
 namespace {
 
 // Moves an end of s to p (end = true: s.b, else s.a). An arc whose new end lands just

@@ -1,6 +1,6 @@
 #pragma once
 // Internals of offset-loop dissection (kernels/pocket/offset.cpp): the crude offset loop,
-// joins at corners, and the neighbour test of the crossing sweep. Not a public API.
+// joins at corners. Not a public API.
 #include <cstdint>
 #include <vector>
 
@@ -14,10 +14,6 @@ struct RawSeg {
   std::uint32_t prev, next;  // neighbours in the crude loop (indices into the raw list)
   bool connector;            // a line joining offsets that miss each other: not itself an offset
 };
-
-// Consecutive segments `first` and `second` share the joint first.b == second.a. False
-// when they cannot meet anywhere else.
-bool adjacent_may_cross(const Seg2& first, const Seg2& second);
 
 // The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
 // raw; joins may trim the runs in place.
