@@ -66,6 +66,22 @@ int circle_circle(const Vec2& c0, double r0, const Vec2& c1, double r1, double e
 
 }  // namespace
 
+int carrier_crossings(const Seg2& s0, const Seg2& s1, Vec2 out[2]) {
+  if (!s0.is_arc() && !s1.is_arc()) {
+    const Vec2 d0 = s0.b - s0.a, d1 = s1.b - s1.a;
+    const double den = cross(d0, d1);
+    if (den == 0) return 0;
+    out[0] = s0.a + (cross(s1.a - s0.a, d1) / den) * d0;
+    return 1;
+  }
+  if (s0.is_arc() != s1.is_arc()) {
+    const Seg2& line = s0.is_arc() ? s1 : s0;
+    const Seg2& arc = s0.is_arc() ? s0 : s1;
+    return line_circle(line.a, line.b, arc.c, arc.r, 0.0, out);
+  }
+  return circle_circle(s0.c, s0.r, s1.c, s1.r, 0.0, out);
+}
+
 double parameter_of(const Seg2& s, const Vec2& p) {
   if (!s.is_arc()) {
     const Vec2 ab = s.b - s.a;

@@ -17,6 +17,10 @@ struct SegHit {
 // parameters only for the hits they keep: it costs trigonometry on arcs).
 int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps, bool want_params = true);
 
+// Crossings of the unbounded carriers of two segments (infinite lines, full circles): at
+// most 2, none for parallel lines or concentric circles. Tangent contacts count once.
+int carrier_crossings(const Seg2& s0, const Seg2& s1, Vec2 out[2]);
+
 // Parameter of the point of s closest to p, in [0, 1] by arc length.
 double parameter_of(const Seg2& s, const Vec2& p);
 

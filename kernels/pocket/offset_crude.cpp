@@ -31,40 +31,8 @@ void move_end(Seg2& s, const Vec2& p, bool end) {
 // Crossing of the unbounded carriers of two segments (lines, full circles) nearest to v.
 bool extended_crossing(const Seg2& s0, const Seg2& s1, const Vec2& v, Vec2& out) {
   Vec2 cand[2];
-  int n = 0;
-  if (!s0.is_arc() && !s1.is_arc()) {
-    const Vec2 d0 = s0.b - s0.a, d1 = s1.b - s1.a;
-    const double den = cross(d0, d1);
-    if (den == 0) return false;
-    cand[n++] = s0.a + (cross(s1.a - s0.a, d1) / den) * d0;
-  } else {
-    // Treat a line as the chord of a huge circle is not needed: intersect exactly.
-    const Seg2& a = s0.is_arc() ? s0 : s1;
-    const Seg2& b = s0.is_arc() ? s1 : s0;
-    if (!b.is_arc()) {
-      const Vec2 d = b.b - b.a;
-      const double l = d.norm();
-      if (l == 0) return false;
-      const Vec2 u = d / l;
-      const Vec2 foot = b.a + (a.c - b.a).dot(u) * u;
-      const double h2 = a.r * a.r - (a.c - foot).squaredNorm();
-      if (h2 < 0) return false;
-      const double h = std::sqrt(h2);
-      cand[n++] = foot - h * u;
-      cand[n++] = foot + h * u;
-    } else {
-      const Vec2 d = b.c - a.c;
-      const double l = d.norm();
-      if (l == 0) return false;
-      const double x = (l * l + a.r * a.r - b.r * b.r) / (2 * l);
-      const double h2 = a.r * a.r - x * x;
-      if (h2 < 0) return false;
-      const Vec2 u = d / l, w(-u.y(), u.x());
-      const double h = std::sqrt(h2);
-      cand[n++] = a.c + x * u - h * w;
-      cand[n++] = a.c + x * u + h * w;
-    }
-  }
+  const int n = carrier_crossings(s0, s1, cand);
+  if (n == 0) return false;
   out = cand[0];
   if (n == 2 && (cand[1] - v).norm() < (cand[0] - v).norm()) out = cand[1];
   return true;
