@@ -7,6 +7,7 @@
 
 #include "engine/parallel.hpp"
 #include "engine/pocket_offset.hpp"
+#include "kernels/curves/nurbs.hpp"
 
 namespace ncpath {
 namespace {
@@ -21,11 +22,8 @@ Region nurbs_pocket(int spans) {
     c.ctrl.emplace_back(r * std::cos(a), r * std::sin(a));
   }
   c.ctrl.push_back(c.ctrl.front());
-  const int m = static_cast<int>(c.ctrl.size());
-  c.weights.assign(m, 1.0);
-  for (int k = 0; k <= 3; ++k) c.knots.push_back(0);
-  for (int k = 1; k < m - 3; ++k) c.knots.push_back(k);
-  for (int k = 0; k <= 3; ++k) c.knots.push_back(m - 3);
+  c.weights.assign(c.ctrl.size(), 1.0);
+  c.knots = clamped_uniform_knots(c.ctrl.size(), 3);
   Region r;
   r.boundary.nurbs.push_back(c);
   r.boundary.curves.push_back({make_line(c.ctrl.front(), c.ctrl.back()), 0});

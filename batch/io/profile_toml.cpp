@@ -215,10 +215,8 @@ class Parser {
     n.weights = t.get("weights") ? numbers("weights") : std::vector<double>(n.ctrl.size(), 1.0);
     if (t.get("knots")) {
       n.knots = numbers("knots");
-    } else {  // clamped, uniform
-      const int m = static_cast<int>(n.ctrl.size()), p = n.degree;
-      for (int i = 0; i < m + p + 1; ++i)
-        n.knots.push_back(i <= p ? 0.0 : (i >= m ? 1.0 : static_cast<double>(i - p) / (m - p)));
+    } else {
+      n.knots = clamped_uniform_knots(n.ctrl.size(), n.degree);
     }
     const std::string why = validate(n);
     if (!why.empty()) fail(t, w, why);

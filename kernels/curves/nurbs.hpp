@@ -14,6 +14,9 @@ namespace ncpath {
 // knots decreasing or not clamped, weights not > 0 or count mismatch, non-finite values.
 std::string validate(const Nurbs2& curve);
 
+// Clamped uniform knot vector on [0, 1] for n control points of degree p (n > p).
+std::vector<double> clamped_uniform_knots(std::size_t n, int p);
+
 double nurbs_t0(const Nurbs2& curve);  // first knot
 double nurbs_t1(const Nurbs2& curve);  // last knot
 

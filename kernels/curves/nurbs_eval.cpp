@@ -59,6 +59,14 @@ std::string validate(const Nurbs2& c) {
   return "";
 }
 
+std::vector<double> clamped_uniform_knots(std::size_t n, int p) {
+  std::vector<double> knots;
+  const int m = static_cast<int>(n);
+  for (int i = 0; i < m + p + 1; ++i)
+    knots.push_back(i <= p ? 0.0 : (i >= m ? 1.0 : static_cast<double>(i - p) / (m - p)));
+  return knots;
+}
+
 double nurbs_t0(const Nurbs2& c) { return c.knots.front(); }
 double nurbs_t1(const Nurbs2& c) { return c.knots.back(); }
 

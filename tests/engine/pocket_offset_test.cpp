@@ -98,11 +98,8 @@ TEST(PocketOffset, NurbsBoundaryLevelOneWithinTolerance) {
   }
   // Clamped and closed: first and last control points equal.
   c.ctrl.push_back(c.ctrl.front());
-  const int m = static_cast<int>(c.ctrl.size());
-  c.weights.assign(m, 1.0);
-  for (int k = 0; k <= 3; ++k) c.knots.push_back(0);
-  for (int k = 1; k < m - 3; ++k) c.knots.push_back(k);
-  for (int k = 0; k <= 3; ++k) c.knots.push_back(m - 3);
+  c.weights.assign(c.ctrl.size(), 1.0);
+  c.knots = clamped_uniform_knots(c.ctrl.size(), 3);
   ASSERT_EQ(validate(c), "");
   Region r;
   Seg2 ends = make_line(c.ctrl.front(), c.ctrl.back());
