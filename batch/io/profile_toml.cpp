@@ -83,9 +83,12 @@ class Parser {
              double* bulge = nullptr) {
     const toml::array* a = n.as_array();
     const std::size_t max = bulge ? 3 : 2;
-    if (!a || a->size() < 2 || a->size() > max)
-      fail(n, what,
-           "'" + std::string(key) + "' must be " + (bulge ? "[x, y] or [x, y, bulge]" : "[x, y]"));
+    if (!a || a->size() < 2 || a->size() > max) {
+      // Built by appending: GCC 12 warns (-Wrestrict, a false positive) on the + chain.
+      std::string msg = "'";
+      msg.append(key).append("' must be ").append(bulge ? "[x, y] or [x, y, bulge]" : "[x, y]");
+      fail(n, what, msg);
+    }
     if (bulge) *bulge = a->size() == 3 ? number(*a->get(2), what, key) : 0.0;
     return {number(*a->get(0), what, key), number(*a->get(1), what, key)};
   }
