@@ -21,7 +21,11 @@ std::string num(double x) {
   auto res = std::to_chars(buf, buf + sizeof buf, x);
   return std::string(buf, res.ptr);
 }
-std::string point_text(const Vec2& p) { return "(" + num(p.x()) + ", " + num(p.y()) + ")"; }
+std::string point_text(const Vec2& p) {
+  std::string t = "(";  // appended, not a + chain: GCC 12 -Wrestrict false positive
+  t.append(num(p.x())).append(", ").append(num(p.y())).append(")");
+  return t;
+}
 
 // Union-find over curve end points (end e = 2 * curve + 0 for the start, + 1 for the end).
 struct Dsu {

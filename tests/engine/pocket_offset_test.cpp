@@ -33,8 +33,9 @@ TEST(PocketOffset, RectangleLevelsAndAreas) {
     const double d = 3 + 2.0 * k;
     EXPECT_EQ(res.loops[k].level, k + 1);
     EXPECT_NEAR(-res.loops[k].loop.area2 / 2, (100 - 2 * d) * (60 - 2 * d), 1e-9);
-    if (k > 0)
+    if (k > 0) {
       EXPECT_EQ(res.loops[k].loop.parents, std::vector<std::uint32_t>{std::uint32_t(k - 1)});
+    }
   }
 }
 
