@@ -60,8 +60,8 @@ GcodeWriter::GcodeWriter(const std::filesystem::path& path, const GcodeParams& p
   line("(job: " + comment_safe(p.job_name) + ")");
   line("(units mm, absolute, XY plane; safe Z " + num(safe) + "; arc tolerance " +
        num(quant(p.arc_tolerance)) + " mm)");
-  line("(feed " + num(quant(p.feed)) + " mm/min; plunge feed " + num(quant(p.plunge_feed)) +
-       " mm/min; spindle " + num(quant(p.spindle_rpm)) + " rpm)");
+  line("(feed " + trimmed(p.feed) + " mm/min; plunge feed " + trimmed(p.plunge_feed) +
+       " mm/min; spindle " + trimmed(p.spindle_rpm) + " rpm)");
   if (grbl) {
     // Only words every Grbl since 0.8 accepts; G40 (1.1) and G49 (0.9h) are Grbl's power-up
     // state anyway (no cutter compensation, no tool table).
@@ -71,10 +71,10 @@ GcodeWriter::GcodeWriter(const std::filesystem::path& path, const GcodeParams& p
     line("G40 G49 G80 G94");
   }
   // Retract before the spindle starts: the tool may sit low when the program begins.
-  line("G0 Z" + num(safe));
+  line(std::string("G0 Z").append(num(safe)));  // append: GCC 12 -Wrestrict false positive
   ++stats_.rapids;
   cur_[2] = safe;
-  line("S" + num(quant(p.spindle_rpm)) + " M3");
+  line(std::string("S").append(trimmed(p.spindle_rpm)).append(" M3"));
 }
 
 GcodeWriter::~GcodeWriter() {
@@ -103,6 +103,14 @@ std::string GcodeWriter::num(Q q) const {
   return s;
 }
 
+std::string GcodeWriter::trimmed(double v) const {
+  // F and S words without trailing zeros (F800, F812.5): fixed decimals are for coordinates.
+  std::string s = num(quant(v));
+  while (s.back() == '0') s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s;
+}
+
 void GcodeWriter::line(const std::string& text) {
   buf_ += text;
   buf_ += '\n';
@@ -117,11 +125,7 @@ void GcodeWriter::flush() {
 
 void GcodeWriter::set_feed(double feed, std::string& text) {
   if (feed == cur_feed_) return;
-  // F is written trimmed (F800, F812.5): fixed decimals are for coordinates.
-  std::string f = num(quant(feed));
-  while (f.back() == '0') f.pop_back();
-  if (f.back() == '.') f.pop_back();
-  text += " F" + f;
+  text += " F" + trimmed(feed);
   cur_feed_ = feed;
 }
 
@@ -205,7 +209,8 @@ void GcodeWriter::emit_path(std::span<const double> xyz) {
       if (t[2] != cur_[2]) text += " Z" + num(t[2]);
       // Centre relative to the start as emitted, so that the controller's start radius and
       // end radius differ only by rounding.
-      text += " I" + num(quant(mv.centre.x()) - cur_[0]) + " J" + num(quant(mv.centre.y()) - cur_[1]);
+      text +=
+          " I" + num(quant(mv.centre.x()) - cur_[0]) + " J" + num(quant(mv.centre.y()) - cur_[1]);
       set_feed(params_.feed, text);
       line(text);
       std::copy(t, t + 3, cur_);

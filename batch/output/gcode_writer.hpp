@@ -76,7 +76,8 @@ class GcodeWriter {
   using Q = std::int64_t;  // coordinate in units of 10^-decimals mm
 
   Q quant(double v) const;
-  std::string num(Q q) const;  // fixed decimals, never "-0" or an exponent
+  std::string num(Q q) const;           // fixed decimals, never "-0" or an exponent
+  std::string trimmed(double v) const;  // num() without trailing zeros, for F and S
   void line(const std::string& text);
   void emit_path(std::span<const double> xyz);
   void emit_rapid(std::span<const double> xyz);
