@@ -40,6 +40,39 @@ void add_common(CLI::App* app, Common& c) {
   app->add_flag("-q,--quiet", c.quiet, "No progress bar");
 }
 
+struct GcodeCli {
+  std::string path, dialect = "linuxcnc";
+  out::GcodeParams params;
+  std::optional<double> safe_z;
+};
+
+void add_gcode(CLI::App* app, GcodeCli& g) {
+  app->add_option("--gcode", g.path, "Also write the paths as G-code to this file (docs/gcode.md)");
+  app->add_option("--dialect", g.dialect, "G-code dialect")
+      ->check(CLI::IsMember({"linuxcnc", "grbl"}))
+      ->capture_default_str();
+  app->add_option("--feed", g.params.feed, "Cutting feed (mm/min)")->capture_default_str();
+  app->add_option("--plunge-feed", g.params.plunge_feed, "Plunge feed (mm/min)")
+      ->capture_default_str();
+  app->add_option("--spindle", g.params.spindle_rpm, "Spindle speed (rev/min)")
+      ->capture_default_str();
+  app->add_option("--safe-z", g.safe_z,
+                  "Safe height for rapid moves (mm); default: 5 above the part's top (meshes) "
+                  "or 5 (pockets)");
+}
+
+void apply_gcode(const GcodeCli& g, jobs::JobSpec& j) {
+  if (g.path.empty()) return;
+  j.gcode = g.path;
+  j.gcode_params = g.params;
+  j.gcode_safe_z = g.safe_z;
+  if (std::string e = jobs::parse_dialect(g.dialect, j.gcode_params.dialect);
+      !e.empty() && j.error.empty()) {
+    j.error = "--dialect: " + e;
+    j.error_status = "invalid_parameter";
+  }
+}
+
 jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
   jobs::JobSpec j;
   j.operation = op;
@@ -119,8 +152,10 @@ int main(int argc, char** argv) {
   std::string direction = "x";
   std::vector<double> rect;
   std::optional<double> floor_z;
+  GcodeCli raster_g, drop_g, offset_g;
   CLI::App* raster = app.add_subcommand("raster", "Zig-zag drop-cutter finishing over a mesh");
   add_common(raster, rc);
+  add_gcode(raster, raster_g);
   raster->add_option("--interval", rp.interval, "Distance between scan lines (mm)")
       ->capture_default_str();
   raster->add_option("--step", rp.step, "Sampling step along a scan line (mm)")
@@ -145,6 +180,7 @@ int main(int argc, char** argv) {
   std::string points;
   CLI::App* drop = app.add_subcommand("drop", "Drop the tool at given xy points (CSV x,y lines)");
   add_common(drop, dc);
+  add_gcode(drop, drop_g);
   drop->add_option("--points", points, "CSV of x,y lines (mm); a blank line starts a new path")
       ->required();
 
@@ -178,6 +214,7 @@ int main(int argc, char** argv) {
   offset->add_option("--threads", offset_threads, "Worker threads, 0 = all cores")
       ->capture_default_str();
   offset->add_flag("-q,--quiet", offset_quiet, "No progress bar");
+  add_gcode(offset, offset_g);
 
   std::string batch_file, batch_out;
   int batch_threads = -1;
@@ -202,6 +239,7 @@ int main(int argc, char** argv) {
       j.error = "--" + e;
       j.error_status = "invalid_parameter";
     }
+    apply_gcode(raster_g, j);
     batch.output = rc.out;
     batch.threads = rc.threads;
     quiet = rc.quiet;
@@ -221,6 +259,7 @@ int main(int argc, char** argv) {
       j.error = e;
       j.error_status = "invalid_parameter";
     }
+    apply_gcode(offset_g, j);
     batch.output = offset_out;
     batch.threads = offset_threads;
     quiet = offset_quiet;
@@ -228,6 +267,7 @@ int main(int argc, char** argv) {
   } else if (drop->parsed()) {
     jobs::JobSpec j = job_from(dc, jobs::Operation::kDrop);
     j.points = points;
+    apply_gcode(drop_g, j);
     batch.output = dc.out;
     batch.threads = dc.threads;
     quiet = dc.quiet;

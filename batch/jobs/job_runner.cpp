@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "batch/io/mesh_reader.hpp"
@@ -22,8 +23,9 @@ using out::StatValue;
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
 // Reads the mesh, transforms it and runs the raster or drop operation into cl.
-void run_mesh_job(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
-                  std::vector<StatValue>& stats, JobOutcome& o) {
+void run_mesh_job(const JobSpec& job, out::ClJob& cl,
+                  const std::function<out::GcodeWriter*(double part_top)>& open_gcode,
+                  const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o) {
   Stopwatch read_clock;
   io::MeshReadResult in = io::read_mesh(job.input);
   stats.push_back({"input_format", in.stats.format, ""});
@@ -35,10 +37,12 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
   stats.push_back({"transform_scale", tr.scale, ""});
   stats.push_back({"read_s", read_clock.seconds(), "s"});
 
+  out::GcodeWriter* gcode = open_gcode(bounding_box(in.mesh).hi.z());
   RunControl control;
   control.progress = obs.progress;
   auto sink = [&](const ClChunk& c) {
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+    if (gcode) gcode->append(c);
   };
   if (job.operation == Operation::kRaster) {
     const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
@@ -90,12 +94,33 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
     fail(job.error_status.c_str(), job.error);
   } else
     try {
+      // The G-code writer is opened once the part's top is known (mesh jobs read it first).
+      std::optional<out::GcodeWriter> gcode;
+      auto open_gcode = [&](double part_top) -> out::GcodeWriter* {
+        if (job.gcode.empty()) return nullptr;
+        out::GcodeParams gp = job.gcode_params;
+        gp.job_name = job.name;
+        gp.safe_z = job.gcode_safe_z.value_or(part_top + 5.0);
+        if (gp.safe_z < part_top)
+          throw std::invalid_argument("gcode.safe_z " + std::to_string(gp.safe_z) +
+                                      " mm is below the part's top " + std::to_string(part_top) +
+                                      " mm: rapids would hit it");
+        gcode.emplace(job.gcode, gp);
+        return &*gcode;
+      };
       if (job.operation == Operation::kOffset) {
-        const OffsetJobSummary r = run_offset_job(job, cl, stats);
+        const OffsetJobSummary r = run_offset_job(job, cl, open_gcode(0.0), stats);
         o.points = r.points;
         o.compute_s = r.compute_s;
       } else {
-        run_mesh_job(job, cl, obs, stats, o);
+        run_mesh_job(job, cl, open_gcode, obs, stats, o);
+      }
+      if (gcode) {
+        gcode->finish();
+        const out::GcodeStats& gs = gcode->stats();
+        stats.push_back({"gcode_arcs", gs.arcs, ""});
+        stats.push_back({"gcode_lines", gs.lines, ""});
+        stats.push_back({"gcode_retractions", gs.retractions, ""});
       }
       stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
       o.status = "ok";

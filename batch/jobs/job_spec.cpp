@@ -36,6 +36,17 @@ std::string parse_stepover(const std::string& text, const Cutter& tool, double& 
   return "";
 }
 
+std::string parse_dialect(const std::string& text, out::GcodeDialect& out) {
+  if (text == "linuxcnc") {
+    out = out::GcodeDialect::kLinuxCnc;
+  } else if (text == "grbl") {
+    out = out::GcodeDialect::kGrbl;
+  } else {
+    return "G-code dialect must be \"linuxcnc\" or \"grbl\", got \"" + text + "\"";
+  }
+  return "";
+}
+
 std::string validate(const OffsetParams& p) {
   std::ostringstream os;
   if (!(std::isfinite(p.stepover) && p.stepover > 0))
@@ -257,6 +268,25 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     if (pk.error.empty() && job.operation == Operation::kOffset)
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (!pk.error.empty()) k.error = k.error.empty() ? pk.error : k.error;
+  }
+  if (const toml::table* gt = k.table("gcode")) {
+    Keys gk(*gt, "gcode.");
+    std::string path, dialect;
+    if (gk.string("path", path))
+      job.gcode = (base / path).lexically_normal();
+    else
+      gk.fail("path", "is required (the .ngc file to write)");
+    if (gk.string("dialect", dialect))
+      if (std::string e = parse_dialect(dialect, job.gcode_params.dialect); !e.empty())
+        gk.fail("dialect", e);
+    gk.number("feed", job.gcode_params.feed);
+    gk.number("plunge_feed", job.gcode_params.plunge_feed);
+    gk.number("spindle_rpm", job.gcode_params.spindle_rpm);
+    double safe_z;
+    if (gk.number("safe_z", safe_z)) job.gcode_safe_z = safe_z;
+    gk.number("arc_tolerance", job.gcode_params.arc_tolerance);
+    gk.finish();
+    if (!gk.error.empty() && k.error.empty()) k.error = gk.error;
   }
   if (job.operation == Operation::kOffset && !(job.offset.stepover > 0) && k.error.empty())
     k.fail("params.stepover", "is required for an offset job (mm, or a percentage like \"40%\")");

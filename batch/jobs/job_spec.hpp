@@ -14,14 +14,18 @@
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
 //   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
 //   params    = { interval = 0.5, step = 0.1 }     # see docs/cli.md for every key
+//   gcode     = { path = "bunny.ngc", dialect = "linuxcnc", feed = 800, plunge_feed = 200,
+//                 spindle_rpm = 12000, safe_z = 5, arc_tolerance = 0.005 }   # optional
 //
 // A job whose keys or values are wrong is still a job: it carries the error (status
 // "invalid_parameter" and a message naming the key) and the batch records it and goes on.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "batch/output/gcode_writer.hpp"
 #include "engine/raster.hpp"
 #include "kernels/cutters/cutter.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
@@ -49,6 +53,11 @@ struct JobSpec {
   Cutter tool;
   RasterParams raster;
   OffsetParams offset;
+  std::filesystem::path gcode;  // also write the job's paths as G-code here (empty: no)
+  out::GcodeParams gcode_params;
+  // Safe height for rapids, mm. Unset: 5 mm above the part's top for mesh jobs (z = 0 for
+  // pockets). A given height below a mesh's top is rejected.
+  std::optional<double> gcode_safe_z;
   std::string error;         // non-empty: the spec is invalid; status + message below
   std::string error_status;  // "invalid_parameter"
 };
@@ -74,6 +83,8 @@ const char* operation_name(Operation op);  // "raster", "drop", "offset"
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);
 // "" when usable, else a message naming the key.
 std::string validate(const OffsetParams& params);
+// "linuxcnc" / "grbl" -> dialect; error message or "".
+std::string parse_dialect(const std::string& text, out::GcodeDialect& out);
 
 // The parameters of a job as JSON text, defaults included (HDF5 `params` attribute).
 std::string params_json(const JobSpec& job);

@@ -29,7 +29,7 @@ io::ProfileSoup read_profile(const std::filesystem::path& path) {
 
 }  // namespace
 
-OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
+OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats) {
   OffsetJobSummary summary;
   Stopwatch read_clock;
@@ -63,6 +63,10 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
   std::vector<std::uint32_t> path_sizes;
   std::vector<std::uint8_t> path_kinds;
   std::vector<Vec2> poly;
+  // Loop paths are polylines within the tolerance; when G-code is written they are finer
+  // than its arc tolerance, so that the G-code writer can fit the arcs back.
+  const double chord = gcode ? std::min(job.offset.tolerance, gcode->params().arc_tolerance / 4)
+                             : job.offset.tolerance;
   std::uint64_t segments = 0;
   for (std::size_t l = 0; l < res.loops.size(); ++l) {
     const PocketLoop& pl = res.loops[l];
@@ -71,7 +75,7 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
       kind.push_back(static_cast<std::uint8_t>(s.kind));
       xy.insert(xy.end(), {s.a.x(), s.a.y(), s.b.x(), s.b.y(), s.c.x(), s.c.y()});
       radius.push_back(s.is_arc() ? s.r : 0.0);
-      append_polyline(s, job.offset.tolerance, poly);
+      append_polyline(s, chord, poly);
     }
     segments += pl.loop.segs.size();
     seg_offsets.push_back(static_cast<std::int64_t>(segments));
@@ -86,6 +90,15 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
     path_kinds.push_back(static_cast<std::uint8_t>(PathKind::kCut));
   }
   cl.append_paths(cl_xyz, contact, path_sizes, path_kinds);
+  summary.points = cl_xyz.size() / 3;
+  if (gcode) {
+    ClChunk chunk;
+    chunk.xyz = std::move(cl_xyz);
+    chunk.contact = std::move(contact);
+    chunk.path_sizes = std::move(path_sizes);
+    chunk.path_kinds = std::move(path_kinds);
+    gcode->append(chunk);
+  }
   cl.write_array("offset", "seg_kind", std::span<const std::uint8_t>(kind), 0, "",
                  "0=line,1=arc_ccw,2=arc_cw");
   cl.write_array("offset", "seg_points", std::span<const double>(xy), 6, "mm",
@@ -104,7 +117,6 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
                  "offset generation history: (child loop, parent loop) pairs");
   const double write_s = write_clock.seconds();
 
-  summary.points = cl_xyz.size() / 3;
   stats.push_back({"loops", i64(res.loops.size()), ""});
   stats.push_back({"levels", i64(res.levels), ""});
   stats.push_back({"segments", i64(segments), ""});

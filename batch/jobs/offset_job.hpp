@@ -7,6 +7,7 @@
 
 #include "batch/jobs/job_spec.hpp"
 #include "batch/output/cl_writer.hpp"
+#include "batch/output/gcode_writer.hpp"
 
 namespace ncpath::jobs {
 
@@ -17,7 +18,8 @@ struct OffsetJobSummary {
 
 // Throws io::ReadError for unreadable or malformed profiles, std::invalid_argument for
 // profiles that do not chain into closed, non-crossing loops.
-OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl,
+// gcode: when not null, the loop paths are written there too.
+OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats);
 
 }  // namespace ncpath::jobs

@@ -71,6 +71,7 @@ class GcodeWriter {
   void finish();
 
   const GcodeStats& stats() const { return stats_; }
+  const GcodeParams& params() const { return params_; }
 
  private:
   using Q = std::int64_t;  // coordinate in units of 10^-decimals mm

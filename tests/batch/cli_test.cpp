@@ -179,6 +179,46 @@ radius = 5
   EXPECT_NE(bad.output.find("invalid_input"), std::string::npos) << bad.output;
 }
 
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(Cli, GcodeIsWrittenWithASafeHeightAboveThePart) {
+  const auto dir = fixture_dir();  // part.stl: z in [1, 3]
+  CmdResult r =
+      ncpath("raster --mesh " + (dir / "part.stl").string() +
+             " --tool ball:4 --interval 4 --step 1 --quiet --out " + (dir / "g.h5").string() +
+             " --gcode " + (dir / "g.ngc").string() + " --dialect grbl --feed 1500");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string g = slurp(dir / "g.ngc");
+  EXPECT_NE(g.find("G21 G90 G17"), std::string::npos);
+  EXPECT_NE(g.find("F1500"), std::string::npos);
+  EXPECT_EQ(g.find("G40"), std::string::npos);  // not in the Grbl preamble
+  // Safe height: 5 mm above the part's top (the height field peaks just under z = 3).
+  const auto at = g.find("G0 Z");
+  ASSERT_NE(at, std::string::npos);
+  const double safe = std::stod(g.substr(at + 4, 8));
+  EXPECT_GT(safe, 7.9);
+  EXPECT_LE(safe, 8.0);
+  EXPECT_NE(g.find("M2"), std::string::npos);
+  // A safe height below the part is refused, naming the key.
+  r = ncpath("raster --mesh " + (dir / "part.stl").string() +
+             " --tool ball:4 --interval 4 --step 1 --quiet --out " + (dir / "g2.h5").string() +
+             " --gcode " + (dir / "g2.ngc").string() + " --safe-z 2");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("gcode.safe_z"), std::string::npos) << r.output;
+  // Pocket loops come out with arcs.
+  std::ofstream(dir / "disc.toml") << "[[circle]]\ncenter = [0, 0]\nradius = 20\n";
+  r = ncpath("offset --profile " + (dir / "disc.toml").string() +
+             " --tool flat:6 --stepover 3 --depth 2 --quiet --out " + (dir / "p.h5").string() +
+             " --gcode " + (dir / "p.ngc").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string p = slurp(dir / "p.ngc");
+  EXPECT_TRUE(p.find("G2 ") != std::string::npos || p.find("G3 ") != std::string::npos);
+  EXPECT_NE(p.find("Z-2.0000"), std::string::npos);
+}
+
 TEST(Cli, HelpDocumentsEveryOption) {
   const CmdResult top = ncpath("--help");
   for (const char* s : {"raster", "drop", "run"})

@@ -83,6 +83,30 @@ TEST(JobSpec, BadParametersAreNamed) {
             std::string::npos);
 }
 
+TEST(JobSpec, GcodeTable) {
+  const BatchSpec b = parse(R"(
+[[job]]
+input = "p.stl"
+tool = "ball:3"
+gcode = { path = "out/p.ngc", dialect = "grbl", feed = 1200, safe_z = 40 }
+[[job]]
+input = "p.stl"
+tool = "ball:3"
+gcode = { path = "q.ngc", dialect = "fanuc" }
+[[job]]
+input = "p.stl"
+tool = "ball:3"
+gcode = { path = "q.ngc", speed = 3 }
+)");
+  EXPECT_EQ(b.jobs[0].error, "");
+  EXPECT_EQ(b.jobs[0].gcode, "/base/out/p.ngc");
+  EXPECT_EQ(b.jobs[0].gcode_params.dialect, out::GcodeDialect::kGrbl);
+  EXPECT_EQ(b.jobs[0].gcode_params.feed, 1200);
+  EXPECT_EQ(*b.jobs[0].gcode_safe_z, 40);
+  EXPECT_NE(b.jobs[1].error.find("fanuc"), std::string::npos);
+  EXPECT_NE(b.jobs[2].error.find("'gcode.speed' is not a known key"), std::string::npos);
+}
+
 TEST(JobSpec, OneBadJobDoesNotSpoilTheOthers) {
   const BatchSpec b = parse(R"(
 [[job]]
