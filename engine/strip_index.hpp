@@ -28,7 +28,6 @@ struct StripBuckets {
   double y0 = 0, height = 1;  // strip s covers y in [y0 + s*height, y0 + (s+1)*height]
   std::vector<std::uint32_t> offsets;
   std::vector<std::uint32_t> ids;
-  std::size_t strip_count() const { return offsets.empty() ? 0 : offsets.size() - 1; }
 };
 
 StripBuckets bucket_clusters_by_strip(const ClusteredFacets& clustered, double radius, double y0,

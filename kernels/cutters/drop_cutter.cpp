@@ -191,15 +191,6 @@ inline bool vertex_contact(const Cutter& c, const Vec3& v, double x, double y, d
 
 }  // namespace
 
-bool drop_on_plane(const Cutter& c, const PreparedFacet& f, double x, double y, double& tip_z,
-                   Vec3& cc) {
-  if (f.vertical) return false;
-  double ccx, ccy;
-  if (plane_contact(c, f, x, y, tip_z, ccx, ccy) != 0) return false;
-  cc = Vec3(ccx, ccy, (f.plane_d - f.n.x() * ccx - f.n.y() * ccy) / f.n.z());
-  return true;
-}
-
 bool drop_on_edge(const Cutter& c, const Vec3& p, const Vec3& q, double x, double y, double& tip_z,
                   Vec3& cc) {
   const double dx = q.x() - p.x(), dy = q.y() - p.y();

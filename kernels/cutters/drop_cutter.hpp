@@ -53,9 +53,7 @@ bool drop_facet(const Cutter& cutter, const PreparedFacet& f, double x, double y
                 std::uint32_t facet_index, CutterContact& best);
 
 // The single-contact pieces, exposed for tests. Each returns false when that contact does
-// not exist at (x, y); otherwise writes the tip z and contact point.
-bool drop_on_plane(const Cutter& cutter, const PreparedFacet& f, double x, double y, double& tip_z,
-                   Vec3& cc);
+// not exist at (x, y); otherwise writes the tip z (and the contact point).
 bool drop_on_edge(const Cutter& cutter, const Vec3& p, const Vec3& q, double x, double y,
                   double& tip_z, Vec3& cc);
 bool drop_on_vertex(const Cutter& cutter, const Vec3& v, double x, double y, double& tip_z);
