@@ -32,8 +32,10 @@ CmdResult ncpath(const std::string& args) {
   return r;
 }
 
+// A folder of its own per test: ctest runs the tests of this binary in parallel processes.
 std::filesystem::path fixture_dir() {
-  const auto dir = h5::out_dir("cli");
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto dir = h5::out_dir(std::string("cli_") + (info ? info->name() : "none"));
   const TriangleMesh m = test::height_field(
       20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
   io::write_binary_stl(dir / "part.stl", m);
