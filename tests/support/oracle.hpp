@@ -97,6 +97,14 @@ inline double tip_lower_bound(double R, double r, const V3& a, const V3& b, cons
   return best;
 }
 
+// Distance from p to the segment ab (3D).
+inline double point_segment_distance(const V3& a, const V3& b, const V3& p) {
+  const V3 ab = b - a;
+  const double l2 = ab.squaredNorm();
+  const double t = l2 > 0 ? std::clamp((p - a).dot(ab) / l2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
 // Exact distance from point p to triangle abc (closest point by region tests).
 inline double point_triangle_distance(const V3& p, const V3& a, const V3& b, const V3& c) {
   const V3 ab = b - a, ac = c - a, ap = p - a;

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/oracle.hpp"
+
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -161,11 +163,7 @@ Program interpret(const std::string& text) {
 }
 
 double seg_dist(const Vec3& a, const Vec3& b, const Vec3& p) {
-  const Vec3 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  double t = l2 > 0 ? (p - a).dot(ab) / l2 : 0;
-  t = std::fmax(0, std::fmin(1, t));
-  return (p - (a + t * ab)).norm();
+  return ncpath::test::point_segment_distance(a, b, p);
 }
 
 double dist_to_feed_moves(const Program& pr, const Vec3& p) {

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/oracle.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -63,11 +65,7 @@ Vec3 eval(const Move3& m, double u) {
 }
 
 double seg_dist(const Vec3& a, const Vec3& b, const Vec3& p) {
-  const Vec3 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  double t = l2 > 0 ? (p - a).dot(ab) / l2 : 0;
-  t = std::fmax(0, std::fmin(1, t));
-  return (p - (a + t * ab)).norm();
+  return ncpath::test::point_segment_distance(a, b, p);
 }
 
 // Upper bound of the distance from p to a move (exact for lines; for arcs the point of the
