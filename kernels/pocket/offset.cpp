@@ -257,7 +257,20 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
     std::size_t e = b;
     while (e < pieces.size() && pieces[e].loop == l) ++e;
     if (!crossed[l]) {
-      for (std::size_t k = b; k < e; ++k) keep[k] = same_way[l];
+      // Validity cannot change along a crude loop that crosses nothing. With a single input
+      // loop its orientation tells the true offset from an inverted remnant; with several,
+      // it may also lie wholly within d of another input loop (a band thinner than 2d), so
+      // one piece is tested by distance.
+      std::uint8_t ok = same_way[l];
+      if (ok && loops.size() > 1) {
+        std::size_t best = b;
+        for (std::size_t k = b + 1; k < e; ++k)
+          if ((pieces[k].s.b - pieces[k].s.a).squaredNorm() >
+              (pieces[best].s.b - pieces[best].s.a).squaredNorm())
+            best = k;
+        ok = valid(pieces[best].s) ? 1 : 0;
+      }
+      for (std::size_t k = b; k < e; ++k) keep[k] = ok;
     } else {
       // Every run (cyclic) is valid or invalid as a whole: test its longest piece.
       const std::size_t m = e - b;

@@ -127,6 +127,19 @@ TEST(Offset, IslandsMeetBoundaryAndMerge) {
   }
 }
 
+// A ring pocket thinner than twice the offset: boundary and island offsets pass each other
+// without crossing, and nothing may remain.
+TEST(Offset, ThinRingIsUsedUpWithoutCrossings) {
+  const std::vector<std::vector<Seg2>> in = {test::circle({0, 0}, 50, true),
+                                             test::circle({0, 0}, 48, false)};
+  EXPECT_TRUE(offset_loops(in, 3).loops.empty());
+  const OffsetResult half = offset_loops(in, 0.5);  // 1 mm of ring left
+  EXPECT_EQ(half.loops.size(), 2u);
+  const double pi = 3.141592653589793;
+  EXPECT_NEAR(half.loops[0].area2 / 2 + half.loops[1].area2 / 2, -pi * (49.5 * 49.5 - 48.5 * 48.5),
+              1e-9);
+}
+
 TEST(Offset, ThinNeckSplitsPocketInTwo) {
   // Two 40x40 squares joined by a 4 mm wide, 10 mm long neck (one clockwise loop).
   const std::vector<Vec2> p = {{0, 0},   {40, 0},  {40, 18}, {50, 18}, {50, 0},  {90, 0},
