@@ -1,0 +1,25 @@
+#pragma once
+// Uncut regions between consecutive offset levels (issue 4, first step).
+//
+// The tool centre runs along the loops of every level, so the material it removes is the
+// set of points within the tool radius R of some loop. Between level k and level k+1 lies
+// the band B = (inside level k) \ (inside level k+1); what stays uncut in it is the set of
+// points of B farther than R from both levels' loops, i.e. B eroded by R. B's boundary is
+// level k's loops as they are (material on the right) and level k+1's loops reversed, so
+// the same offset-loop dissection that made the levels finds the uncut regions: corner
+// uncut where a stepover is wide, neck uncut where a level splits, and (with no inner
+// level) centre uncut inside the innermost loops.
+#include <vector>
+
+#include "kernels/pocket/offset.hpp"
+
+namespace ncpath {
+
+// outer: the loops of level k (one region: a clockwise loop and its holes); inner: the
+// loops of level k+1 inside it (empty for the centre). Returns the uncut regions as loops
+// (material on the right), empty when the band is cut completely.
+std::vector<OffsetLoop> uncut_between(const std::vector<const OffsetLoop*>& outer,
+                                      const std::vector<const OffsetLoop*>& inner,
+                                      double tool_radius);
+
+}  // namespace ncpath

@@ -1,0 +1,114 @@
+// Uncut regions between levels, against Clipper: the band between two levels minus the area
+// swept by the tool disc along both levels' loops (Clipper's closed-line offset of the
+// discretised loops), independent of the offset code.
+#include "kernels/pocket/uncut.hpp"
+
+#include <gtest/gtest.h>
+
+#include <clipper.hpp>
+
+#include "kernels/pocket/offset_levels.hpp"
+#include "tests/support/shapes2d.hpp"
+
+namespace ncpath {
+namespace {
+
+constexpr double kScale = 1e6;
+constexpr double kChord = 1e-4;
+
+ClipperLib::Path to_path(const std::vector<Seg2>& loop) {
+  std::vector<Vec2> pts;
+  for (const Seg2& s : loop) append_polyline(s, kChord, pts);
+  ClipperLib::Path path;
+  for (const Vec2& p : pts)
+    path.emplace_back(static_cast<ClipperLib::cInt>(std::llround(p.x() * kScale)),
+                      static_cast<ClipperLib::cInt>(std::llround(p.y() * kScale)));
+  return path;
+}
+
+double area_of(const ClipperLib::Paths& ps) {
+  double a = 0;
+  for (const auto& p : ps) a += ClipperLib::Area(p);
+  return a / (kScale * kScale);
+}
+
+// Area of the band between two levels left uncut by a tool of radius r on both levels.
+double clipper_uncut_area(const std::vector<Seg2>& outer, const std::vector<Seg2>& inner,
+                          double r) {
+  ClipperLib::Paths band_paths = {to_path(outer), to_path(inner)};
+  ClipperLib::Paths band;
+  {
+    ClipperLib::Clipper c;
+    c.AddPaths(band_paths, ClipperLib::ptSubject, true);
+    c.Execute(ClipperLib::ctUnion, band, ClipperLib::pftEvenOdd, ClipperLib::pftEvenOdd);
+  }
+  ClipperLib::Paths swept;
+  {
+    ClipperLib::ClipperOffset off;
+    off.ArcTolerance = kChord * kScale;
+    off.AddPaths(band_paths, ClipperLib::jtRound, ClipperLib::etClosedLine);
+    off.Execute(swept, r * kScale);
+  }
+  ClipperLib::Clipper c;
+  c.AddPaths(band, ClipperLib::ptSubject, true);
+  c.AddPaths(swept, ClipperLib::ptClip, true);
+  ClipperLib::Paths rest;
+  c.Execute(ClipperLib::ctDifference, rest, ClipperLib::pftNonZero, ClipperLib::pftNonZero);
+  return area_of(rest);
+}
+
+double ours(const std::vector<OffsetLoop>& loops) {
+  double a = 0;
+  for (const OffsetLoop& l : loops) a += -l.area2 / 2;
+  return a;
+}
+
+void check_levels(const std::vector<std::vector<Seg2>>& pocket, double r, double step,
+                  int expect_uncut_min) {
+  const OffsetLevels lv = offset_levels(pocket, r, step);
+  ASSERT_GE(lv.level_start.size(), 3u);
+  int bands_with_uncut = 0;
+  for (std::size_t k = 0; k + 1 < lv.level_start.size(); ++k) {
+    const std::size_t b0 = k == 0 ? 0 : lv.level_start[k - 1], e0 = lv.level_start[k];
+    const std::size_t e1 = lv.level_start[k + 1];
+    if (e0 - b0 != 1 || e1 - e0 != 1) continue;  // single loops only: one band
+    const OffsetLoop& outer = lv.loops[b0].loop;
+    const OffsetLoop& inner = lv.loops[e0].loop;
+    const std::vector<OffsetLoop> u = uncut_between({&outer}, {&inner}, r);
+    bands_with_uncut += !u.empty();
+    const double oracle = clipper_uncut_area(outer.segs, inner.segs, r);
+    const double perimeter = loop_length(outer.segs) + loop_length(inner.segs);
+    EXPECT_NEAR(ours(u), oracle, 6 * kChord * perimeter + 1e-6) << "band " << k;
+  }
+  EXPECT_GE(bands_with_uncut, expect_uncut_min);
+}
+
+TEST(Uncut, NarrowStepoverLeavesNothing) {
+  check_levels({test::rectangle(0, 0, 100, 60, true)}, 3, 2, 0);
+  const OffsetLevels lv = offset_levels({test::rectangle(0, 0, 100, 60, true)}, 3, 2);
+  EXPECT_TRUE(uncut_between({&lv.loops[0].loop}, {&lv.loops[1].loop}, 3).empty());
+}
+
+TEST(Uncut, WideStepoverLeavesCornerUncut) {
+  // Sharp rectangle corners: with a wide stepover the corner bisector has points farther
+  // than R from both loops; Clipper says how much.
+  check_levels({test::rectangle(0, 0, 100, 60, true)}, 3, 5.8, 1);
+  const OffsetLevels lv = offset_levels({test::rectangle(0, 0, 100, 60, true)}, 3, 5.8);
+  EXPECT_EQ(uncut_between({&lv.loops[0].loop}, {&lv.loops[1].loop}, 3).size(), 4u);
+}
+
+TEST(Uncut, StepoverOfTheToolDiameterAndCentreUncut) {
+  check_levels({test::rounded_rectangle(0, 0, 120, 80, 4, true)}, 3, 6, 0);
+  // Centre uncut: what the innermost loop leaves inside itself.
+  const std::vector<std::vector<Seg2>> slotp = {test::slot(50, 9, true)};
+  const OffsetLevels lv = offset_levels(slotp, 3, 6);
+  ASSERT_EQ(lv.level_start.size(), 1u);  // 9 - 3 = 6 < 9: one level only
+  // The only loop is a slot of half-width 6; the tool on it clears 3 mm on each side, so a
+  // centre slot of half-width 3 stays: 50 * 6 + pi * 3^2.
+  const std::vector<OffsetLoop> centre = uncut_between({&lv.loops[0].loop}, {}, 3);
+  ASSERT_EQ(centre.size(), 1u);
+  EXPECT_NEAR(-centre[0].area2 / 2, 300 + 3.141592653589793 * 9, 1e-9);
+}
+
+}  // namespace
+}  // namespace ncpath
