@@ -383,12 +383,19 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
     loop.parents.erase(std::unique(loop.parents.begin(), loop.parents.end()), loop.parents.end());
     res.loops.push_back(std::move(loop));
   }
-  // Orientation check: offsetting a pocket (its input has a clockwise boundary) can only
-  // leave holes inside boundaries. A counter-clockwise loop outside every clockwise one is
-  // what is left of islands after the boundary closed over them: no material there.
+  // Orientation check: offsetting a bounded pocket (its largest loop is a clockwise
+  // boundary) can only leave holes inside boundaries. A counter-clockwise loop outside every
+  // clockwise one is what is left of islands after the boundary closed over them. (An
+  // unbounded region - the complement of a pocket, offset to dilate it - has no such rule.)
+  double largest = 0;
   bool pocket = false;
-  for (std::size_t l = 0; l < loops.size(); ++l)
-    pocket |= (area2 ? (*area2)[l] : loop_area2(loops[l])) < 0;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const double a = area2 ? (*area2)[l] : loop_area2(loops[l]);
+    if (std::abs(a) > largest) {
+      largest = std::abs(a);
+      pocket = a < 0;
+    }
+  }
   if (pocket) {
     std::vector<std::uint8_t> ok(res.loops.size());
     for (std::size_t i = 0; i < res.loops.size(); ++i) {

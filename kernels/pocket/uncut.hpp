@@ -22,4 +22,17 @@ std::vector<OffsetLoop> uncut_between(const std::vector<const OffsetLoop*>& oute
                                       const std::vector<const OffsetLoop*>& inner,
                                       double tool_radius);
 
+// Loops reversed (material on the other side): turns an erosion into a dilation.
+std::vector<std::vector<Seg2>> reversed_loops(const std::vector<std::vector<Seg2>>& loops);
+
+// Material a tool of radius R cannot reach in a pocket region (loops with the material on
+// the right): the region minus its opening (erosion by R, then dilation by R) — corners
+// sharper than the tool and gaps narrower than it. Returns the reachable region's loops
+// (the opening) and the unreachable area, mm^2.
+struct Reach {
+  std::vector<OffsetLoop> reachable;
+  double unreachable_area = 0;
+};
+Reach tool_reach(const std::vector<std::vector<Seg2>>& region, double tool_radius);
+
 }  // namespace ncpath

@@ -110,5 +110,21 @@ TEST(Uncut, StepoverOfTheToolDiameterAndCentreUncut) {
   EXPECT_NEAR(-centre[0].area2 / 2, 300 + 3.141592653589793 * 9, 1e-9);
 }
 
+// Sharp corners keep R^2 (1 - pi/4) each that a tool of radius R cannot reach; a rounded
+// rectangle whose corner radius is at least R keeps nothing; an island's convex corners are
+// no obstacle.
+TEST(Uncut, UnreachableCorners) {
+  const double r = 3, pi = 3.141592653589793;
+  const Reach sharp = tool_reach({test::rectangle(0, 0, 100, 60, true)}, r);
+  EXPECT_NEAR(sharp.unreachable_area, 4 * r * r * (1 - pi / 4), 1e-9);
+  ASSERT_EQ(sharp.reachable.size(), 1u);
+  EXPECT_NEAR(-sharp.reachable[0].area2 / 2, 6000 - 4 * r * r * (1 - pi / 4), 1e-9);
+  EXPECT_NEAR(tool_reach({test::rounded_rectangle(0, 0, 100, 60, 4, true)}, r).unreachable_area, 0,
+              1e-9);
+  const Reach with_island =
+      tool_reach({test::rectangle(0, 0, 100, 60, true), test::rectangle(40, 20, 60, 40, false)}, r);
+  EXPECT_NEAR(with_island.unreachable_area, 4 * r * r * (1 - pi / 4), 1e-9);
+}
+
 }  // namespace
 }  // namespace ncpath
