@@ -26,20 +26,8 @@ std::uint32_t morton2(std::uint32_t x, std::uint32_t y) {
 }  // namespace
 
 FacetBound facet_bound(const PreparedFacet& f, const Cutter& c, std::uint32_t id) {
-  const double r = c.corner_radius, a = c.radius - c.corner_radius;
-  FacetBound b{f.max_z, f.min_x, f.max_x, f.min_y, f.max_y, 0, 0, 0, id};
-  if (f.vertical) {
-    b.plane_c = std::numeric_limits<double>::infinity();
-  } else {
-    // The kernel's tangent point is (x, y) - (a / |n_xy| + r) n_xy; substituting it into
-    // the plane gives a tip linear in (x, y).
-    const double nx = f.n.x(), ny = f.n.y(), nz = f.n.z();
-    const double nxy = std::sqrt(nx * nx + ny * ny);
-    b.plane_a = -nx / nz;
-    b.plane_b = -ny / nz;
-    b.plane_c = (f.plane_d + a * nxy + r * nxy * nxy) / nz + r * nz - r;
-  }
-  return b;
+  const PlaneTip t = plane_tip(c, f);
+  return {f.max_z, f.min_x, f.max_x, f.min_y, f.max_y, t.a, t.b, t.c, id};
 }
 
 ClusteredFacets cluster_facets(const FacetTable& table, const Cutter& cutter, unsigned group) {

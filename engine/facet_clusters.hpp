@@ -10,6 +10,7 @@
 
 #include "engine/facet_table.hpp"
 #include "kernels/cutters/cutter.hpp"
+#include "kernels/cutters/drop_cutter.hpp"
 
 namespace ncpath {
 

@@ -44,15 +44,22 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
     if (gcode) gcode->append(c);
   };
+  // Statistics both mesh operations have.
+  auto common = [&](std::uint64_t facets, std::uint64_t degenerate, double index_s,
+                    double compute_s, double sink_s) {
+    o.compute_s = compute_s;
+    stats.push_back({"facets_skipped_degenerate", i64(degenerate), ""});
+    stats.push_back({"facets_used", i64(facets), ""});
+    stats.push_back({"index_build_s", index_s, "s"});
+    stats.push_back({"compute_s", compute_s, "s"});
+    stats.push_back({"write_s", sink_s, "s"});
+    stats.push_back({"points", i64(o.points), ""});
+  };
   if (job.operation == Operation::kRaster) {
     const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
     o.points = st.cut_points + st.link_points;
-    o.compute_s = st.compute_s;
-    stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
-    stats.push_back({"facets_used", i64(st.facets), ""});
-    stats.push_back({"index_build_s", st.index_s, "s"});
+    common(st.facets, st.facets_degenerate, st.index_s, st.compute_s, st.sink_s);
     stats.push_back({"lines", i64(st.lines), ""});
-    stats.push_back({"points", i64(o.points), ""});
     stats.push_back({"cut_points", i64(st.cut_points), ""});
     stats.push_back({"link_points", i64(st.link_points), ""});
     stats.push_back({"adaptive_points", i64(st.adaptive_points), ""});
@@ -62,21 +69,13 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
     stats.push_back({"scan_y_min", st.rect[1], "mm"});
     stats.push_back({"scan_x_max", st.rect[2], "mm"});
     stats.push_back({"scan_y_max", st.rect[3], "mm"});
-    stats.push_back({"compute_s", st.compute_s, "s"});
-    stats.push_back({"write_s", st.sink_s, "s"});
   } else {
     const PointList pts = read_points_csv(job.points);
     const DropPointsStats st =
         run_drop_points(in.mesh, job.tool, pts.xy, pts.path_sizes, sink, control);
     o.points = st.points;
-    o.compute_s = st.compute_s;
-    stats.push_back({"facets_skipped_degenerate", i64(st.facets_degenerate), ""});
-    stats.push_back({"facets_used", i64(st.facets), ""});
-    stats.push_back({"index_build_s", st.index_s, "s"});
-    stats.push_back({"points", i64(st.points), ""});
+    common(st.facets, st.facets_degenerate, st.index_s, st.compute_s, st.sink_s);
     stats.push_back({"no_contact_points", i64(st.no_contact), ""});
-    stats.push_back({"compute_s", st.compute_s, "s"});
-    stats.push_back({"write_s", st.sink_s, "s"});
   }
 }
 

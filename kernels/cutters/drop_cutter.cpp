@@ -191,6 +191,16 @@ inline bool vertex_contact(const Cutter& c, const Vec3& v, double x, double y, d
 
 }  // namespace
 
+PlaneTip plane_tip(const Cutter& c, const PreparedFacet& f) {
+  if (f.vertical) return {0, 0, std::numeric_limits<double>::infinity()};
+  // plane_contact's tangent point is (x, y) - (a / |n_xy| + r) n_xy; substituting it into
+  // the plane gives a tip linear in (x, y).
+  const double r = c.corner_radius, a = c.radius - c.corner_radius;
+  const double nx = f.n.x(), ny = f.n.y(), nz = f.n.z();
+  const double nxy = std::sqrt(nx * nx + ny * ny);
+  return {-nx / nz, -ny / nz, (f.plane_d + a * nxy + r * nxy * nxy) / nz + r * nz - r};
+}
+
 bool drop_on_edge(const Cutter& c, const Vec3& p, const Vec3& q, double x, double y, double& tip_z,
                   Vec3& cc) {
   const double dx = q.x() - p.x(), dy = q.y() - p.y();

@@ -44,6 +44,14 @@ struct PreparedFacet {
   bool vertical;      // |n.z| < tol::kVerticalNormalZ: no facet contact
 };
 
+// The tip height at which the cutter touches the facet's infinite plane, as a linear
+// function of the tool position: a x + b y + c. It bounds every contact with the facet
+// from above (callers use it to skip facets). Vertical facets: a = b = 0, c = +inf.
+struct PlaneTip {
+  double a, b, c;
+};
+PlaneTip plane_tip(const Cutter& cutter, const PreparedFacet& f);
+
 // False when the triangle is degenerate (area below tol::kDegenerateArea2).
 bool prepare_facet(const Vec3& a, const Vec3& b, const Vec3& c, PreparedFacet& out);
 

@@ -10,6 +10,7 @@
 
 #include "kernels/pocket/offset.hpp"
 #include "kernels/pocket/offset_levels.hpp"
+#include "kernels/pocket/uncut.hpp"
 #include "tests/support/shapes2d.hpp"
 
 namespace ncpath {
@@ -57,13 +58,7 @@ double exact_area(const OffsetResult& r) {
 // Clipper's union with the non-zero rule needs the islands as holes, i.e. opposite to the
 // boundary: reverse everything so the boundary is counter-clockwise.
 std::vector<std::vector<Seg2>> for_clipper(const std::vector<std::vector<Seg2>>& loops) {
-  std::vector<std::vector<Seg2>> out;
-  for (const auto& l : loops) {
-    std::vector<Seg2> r;
-    for (auto it = l.rbegin(); it != l.rend(); ++it) r.push_back(reversed(*it));
-    out.push_back(r);
-  }
-  return out;
+  return reversed_loops(loops);
 }
 
 void expect_matches_clipper(const std::vector<std::vector<Seg2>>& loops, double d) {
