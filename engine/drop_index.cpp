@@ -14,8 +14,8 @@ namespace ncpath {
 namespace {
 
 void embree_error(void*, RTCError code, const char* message) {
-  // Embree reports through this callback; the engine turns it into an exception at the
-  // call that failed (see check()).
+  // Registered so Embree never prints on its own; the constructor reads errors back with
+  // rtcGetDeviceError after the scene build and throws.
   (void)code;
   (void)message;
 }
