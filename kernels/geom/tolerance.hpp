@@ -128,4 +128,14 @@ inline constexpr double kCurveIntersect = 1e-11;
 // which is included in the measured deviation anyway.
 inline constexpr double kArcAsLineSweep = 1e-7;
 
+// mm. A link between loops of consecutive offset levels (or from a clean-up loop to its
+// bounding loop) is accepted when it is at most the offset distance plus this long. Offset
+// loops sit at their distance to ~1e-9 mm, but sliver removal (kOffsetSliver) may move a
+// joint by up to 1e-5 mm.
+inline constexpr double kLinkSlack = 2e-5;
+
+// mm^2. An uncut region enclosing less than this is a zero-width remnant (a bridge between
+// two corner regions where a band is exactly twice the tool radius wide), not material.
+inline constexpr double kUncutArea = 1e-9;
+
 }  // namespace ncpath::tol

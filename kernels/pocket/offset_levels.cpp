@@ -44,6 +44,11 @@ std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLo
                           [&](std::size_t k) -> const OffsetLoop& { return loops[k]; });
 }
 
+std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<const OffsetLoop*>& loops) {
+  return group_regions_of(loops.size(),
+                          [&](std::size_t k) -> const OffsetLoop& { return *loops[k]; });
+}
+
 void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& task) {
   for (std::size_t i = 0; i < n; ++i) task(i);
 }

@@ -22,6 +22,7 @@ namespace ncpath {
 // counter-clockwise loop inside no clockwise loop (an island's offset when the input has
 // no boundary) forms a region of its own. Regions are listed in order of their first loop.
 std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<OffsetLoop>& loops);
+std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<const OffsetLoop*>& loops);
 
 struct LevelLoop {
   OffsetLoop loop;          // loop.parents: indices into OffsetLevels::loops of the level above

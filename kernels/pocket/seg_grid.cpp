@@ -7,7 +7,7 @@
 
 namespace ncpath::pocket_detail {
 
-SegGrid::SegGrid(const std::vector<Seg2>& segs, double min_cell) : segs_(segs) {
+SegGrid::SegGrid(const std::vector<Seg2>& segs, double min_cell) : segs_(&segs) {
   lo_ = Vec2::Constant(1e300);
   Vec2 hi = Vec2::Constant(-1e300);
   boxes_.resize(segs.size());
@@ -65,10 +65,37 @@ bool SegGrid::any_closer(const Seg2& s, double limit) {
         const Box& b = boxes_[id];
         if (b.lo.x() > hi.x() || b.hi.x() < lo.x() || b.lo.y() > hi.y() || b.hi.y() < lo.y())
           continue;
-        if (distance(s, segs_[id]) < limit) return true;
+        if (distance(s, (*segs_)[id]) < limit) return true;
       }
     }
   return false;
+}
+
+bool SegGrid::nearest_within(const Vec2& p, double limit, std::uint32_t& seg, double& dist) {
+  const Vec2 lo = p.array() - limit, hi = p.array() + limit;
+  int x0, y0, x1, y1;
+  range(lo, hi, x0, y0, x1, y1);
+  ++tick_;
+  bool found = false;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+      for (std::uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+        const std::uint32_t id = ids_[k];
+        if (stamp_[id] == tick_) continue;
+        stamp_[id] = tick_;
+        const Box& b = boxes_[id];
+        if (b.lo.x() > hi.x() || b.hi.x() < lo.x() || b.lo.y() > hi.y() || b.hi.y() < lo.y())
+          continue;
+        const double d = distance((*segs_)[id], p);
+        if (d < limit && (!found || d < dist || (d == dist && id < seg))) {
+          found = true;
+          seg = id;
+          dist = d;
+        }
+      }
+    }
+  return found;
 }
 
 void SegGrid::range(const Vec2& lo, const Vec2& hi, int& x0, int& y0, int& x1, int& y1) const {

@@ -14,15 +14,20 @@ struct Box {
 
 class SegGrid {
  public:
-  // segs must outlive the grid. Cells are at least min_cell wide and hold about two
-  // segments' worth of area each: a finer grid costs more to build than it saves.
+  // segs must outlive the grid (and stay where they are: the grid keeps their address). Cells are
+  // at least min_cell wide and hold about two segments' worth of area each: a finer grid costs more
+  // to build than it saves.
   SegGrid(const std::vector<Seg2>& segs, double min_cell);
   // True when some segment comes closer to s than limit (exact segment distances).
   bool any_closer(const Seg2& s, double limit);
+  // The segment closest to p among those closer than limit: its index and distance; false
+  // when none is. Ties go to the lowest index.
+  bool nearest_within(const Vec2& p, double limit, std::uint32_t& seg, double& dist);
+  const std::vector<Seg2>& segments() const { return *segs_; }
 
  private:
   void range(const Vec2& lo, const Vec2& hi, int& x0, int& y0, int& x1, int& y1) const;
-  const std::vector<Seg2>& segs_;
+  const std::vector<Seg2>* segs_;
   std::vector<Box> boxes_;
   Vec2 lo_;
   double cell_x_ = 1, cell_y_ = 1;

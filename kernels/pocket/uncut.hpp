@@ -22,6 +22,11 @@ std::vector<OffsetLoop> uncut_between(const std::vector<const OffsetLoop*>& oute
                                       const std::vector<const OffsetLoop*>& inner,
                                       double tool_radius);
 
+// Splits a loop that touches itself at a vertex into the simple loops it is made of and
+// drops those enclosing no area (the zero-width bridges an erosion leaves where a band is
+// exactly 2R wide: no material there, and the tool would travel them for nothing).
+void split_pinched(OffsetLoop loop, std::vector<OffsetLoop>& out);
+
 // Loops reversed (material on the other side): turns an erosion into a dilation.
 std::vector<std::vector<Seg2>> reversed_loops(const std::vector<std::vector<Seg2>>& loops);
 
@@ -29,6 +34,9 @@ std::vector<std::vector<Seg2>> reversed_loops(const std::vector<std::vector<Seg2
 // the right): the region minus its opening (erosion by R, then dilation by R) — corners
 // sharper than the tool and gaps narrower than it. Returns the reachable region's loops
 // (the opening) and the unreachable area, mm^2.
+// The region (loops, material on the right) grown by d: the points within d of it.
+std::vector<OffsetLoop> dilate(const std::vector<std::vector<Seg2>>& region, double d);
+
 struct Reach {
   std::vector<OffsetLoop> reachable;
   double unreachable_area = 0;
