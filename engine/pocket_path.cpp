@@ -84,6 +84,7 @@ Uncut uncut_regions(const PocketOffsetResult& off, const LevelGroups& groups, do
       inner_loops.push_back(&off.loops[l].loop);
       index.push_back(l);
     }
+    if (band_cut(outer_loops, inner_loops, radius)) return;
     const std::vector<OffsetLoop> u = uncut_between(outer_loops, inner_loops, radius);
     if (u.empty()) return;
     Band& b = bands[g];

@@ -22,6 +22,14 @@ std::vector<OffsetLoop> uncut_between(const std::vector<const OffsetLoop*>& oute
                                       const std::vector<const OffsetLoop*>& inner,
                                       double tool_radius);
 
+// A quick sufficient test that uncut_between would find nothing: every boundary point of
+// an uncut region lies at distance R from one level (on its offset by R into the band, or
+// on an arc of radius R around one of its corners) and at least R from the other, so when
+// samples of both offsets (0.1 R apart) all come closer than R - 0.05 R to the other
+// level, there is no uncut region. False means "compute it" (always for the centre band).
+bool band_cut(const std::vector<const OffsetLoop*>& outer,
+              const std::vector<const OffsetLoop*>& inner, double tool_radius);
+
 // Splits a loop that touches itself at a vertex into the simple loops it is made of and
 // drops those enclosing no area (the zero-width bridges an erosion leaves where a band is
 // exactly 2R wide: no material there, and the tool would travel them for nothing).

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <clipper.hpp>
+#include <cmath>
+#include <random>
 
 #include "kernels/pocket/offset_levels.hpp"
 #include "tests/support/shapes2d.hpp"
@@ -76,6 +78,8 @@ void check_levels(const std::vector<std::vector<Seg2>>& pocket, double r, double
     const OffsetLoop& inner = lv.loops[e0].loop;
     const std::vector<OffsetLoop> u = uncut_between({&outer}, {&inner}, r);
     bands_with_uncut += !u.empty();
+    // The quick test may only say "cut" when there is nothing.
+    if (band_cut({&outer}, {&inner}, r)) EXPECT_TRUE(u.empty()) << "band " << k;
     const double oracle = clipper_uncut_area(outer.segs, inner.segs, r);
     const double perimeter = loop_length(outer.segs) + loop_length(inner.segs);
     EXPECT_NEAR(ours(u), oracle, 6 * kChord * perimeter + 1e-6) << "band " << k;
@@ -108,6 +112,45 @@ TEST(Uncut, StepoverOfTheToolDiameterAndCentreUncut) {
   const std::vector<OffsetLoop> centre = uncut_between({&lv.loops[0].loop}, {}, 3);
   ASSERT_EQ(centre.size(), 1u);
   EXPECT_NEAR(-centre[0].area2 / 2, 300 + 3.141592653589793 * 9, 1e-9);
+}
+
+// The quick sufficient test: says "cut" for smooth concentric bands, never when the
+// dissection finds uncut material (random wavy pockets, many stepovers).
+TEST(Uncut, QuickBandTestIsSound) {
+  const std::vector<std::vector<Seg2>> disc = {test::circle({0, 0}, 40, true)};
+  const OffsetLevels lv = offset_levels(disc, 3, 4.5);
+  for (std::size_t k = 0; k + 1 < lv.loops.size(); ++k)
+    EXPECT_TRUE(band_cut({&lv.loops[k].loop}, {&lv.loops[k + 1].loop}, 3)) << k;
+  std::mt19937 rng(11);
+  int said_cut = 0, found_uncut = 0;
+  for (int trial = 0; trial < 12; ++trial) {
+    // A star-shaped polygon of 40 vertices with random radii.
+    std::uniform_real_distribution<double> rad(25, 40);
+    std::vector<Vec2> pts;
+    for (int i = 0; i < 40; ++i) {
+      const double a = -2 * 3.141592653589793 * i / 40;  // clockwise
+      const double rr = rad(rng);
+      pts.emplace_back(rr * std::cos(a), rr * std::sin(a));
+    }
+    std::vector<Seg2> loop;
+    for (int i = 0; i < 40; ++i) loop.push_back(make_line(pts[i], pts[(i + 1) % 40]));
+    const double step = std::uniform_real_distribution<double>(3.2, 6)(rng);
+    const OffsetLevels levels = offset_levels({loop}, 3, step);
+    for (std::size_t k = 0; k + 1 < levels.level_start.size(); ++k) {
+      const std::size_t b0 = k == 0 ? 0 : levels.level_start[k - 1], e0 = levels.level_start[k];
+      std::vector<const OffsetLoop*> outer, inner;
+      for (std::size_t i = b0; i < e0; ++i) outer.push_back(&levels.loops[i].loop);
+      for (std::size_t i = e0; i < levels.level_start[k + 1]; ++i)
+        inner.push_back(&levels.loops[i].loop);
+      const bool quick = band_cut(outer, inner, 3);
+      const bool empty = uncut_between(outer, inner, 3).empty();
+      said_cut += quick;
+      found_uncut += !empty;
+      if (quick) EXPECT_TRUE(empty) << "trial " << trial << " band " << k;
+    }
+  }
+  EXPECT_GT(said_cut, 0);
+  EXPECT_GT(found_uncut, 0);
 }
 
 // Sharp corners keep R^2 (1 - pi/4) each that a tool of radius R cannot reach; a rounded
