@@ -401,11 +401,14 @@ class PartPlanner {
     return ev;
   }
 
+  // Recursion only into out-and-back subtrees (the smaller ones); the one-way chain, as
+  // long as the deepest branch, is a loop.
   void preorder(std::uint32_t x, bool returning, std::uint32_t& counter) {
-    pre_[x] = counter++;
-    for (const Event& e : events(x, returning))
-      if (e.child) preorder(e.id, true, counter);
-    if (!returning && last_[x] != kNone) preorder(last_[x], false, counter);
+    for (; x != kNone; x = returning ? kNone : last_[x]) {
+      pre_[x] = counter++;
+      for (const Event& e : events(x, returning))
+        if (e.child) preorder(e.id, true, counter);
+    }
   }
 
   void attach_cleanups(const std::vector<std::uint32_t>& part) {
@@ -459,6 +462,11 @@ class PartPlanner {
   }
 
   void emit(std::uint32_t x, bool returning) {
+    while (x != kNone) x = emit_loop(x, returning);
+  }
+
+  // Emits loop x with its detours; returns the one-way child to continue with, if any.
+  std::uint32_t emit_loop(std::uint32_t x, bool returning) {
     const std::vector<Seg2>& stored = segs(x);
     const std::size_t n = stored.size();
     std::vector<Seg2> rev;
@@ -490,7 +498,7 @@ class PartPlanner {
       out_.first_loop.insert(out_.first_loop.end(), pieces.begin(), pieces.end());
       out_.slotting_length += loop_length(out_.first_loop);
     }
-    if (returning || last_[x] == kNone) return;
+    if (returning || last_[x] == kNone) return kNone;
     // One way into the last child: from the entry, or along the loop (already cut) to the
     // link's foot, the shorter way round.
     const std::uint32_t c = last_[x];
@@ -511,7 +519,7 @@ class PartPlanner {
     link(link_from_[c].p, entry_[c].p, MoveKind::kLink);
     spine_.insert(spine_.end(), out_.moves.begin() + static_cast<std::ptrdiff_t>(mark),
                   out_.moves.end());
-    emit(c, false);
+    return c;
   }
 
   // Detour from p on a level loop: link, the whole clean-up loop, link back.
