@@ -138,4 +138,9 @@ inline constexpr double kLinkSlack = 2e-5;
 // two corner regions where a band is exactly twice the tool radius wide), not material.
 inline constexpr double kUncutArea = 1e-9;
 
+// Sine of the angle below which two curves meeting at a point are taken to touch rather
+// than cross (offset dissection): near-tangent crossings are ill-conditioned, and a contact
+// that close to tangent moves by at most ~1e-6 mm over the 1 mm around it.
+inline constexpr double kTangentCross = 1e-6;
+
 }  // namespace ncpath::tol

@@ -61,7 +61,7 @@ struct SplitPoint {
 
 }  // namespace
 
-bool raw_offset(const Seg2& s, double d, Seg2& out) {
+bool raw_offset(const Seg2& s, double d, Seg2& out, bool* inverted) {
   out = s;
   if (!s.is_arc()) {
     const Vec2 dir = s.b - s.a;
@@ -73,13 +73,18 @@ bool raw_offset(const Seg2& s, double d, Seg2& out) {
     return true;
   }
   // Counter-clockwise arcs have their centre on the left: moving right grows the radius.
+  // An arc whose radius is smaller than d on the side it is offset to turns inside out: its
+  // offset points lie past the centre (radius d - r, same turning direction). Kept, so that
+  // the crude loop stays continuous through the swallowtail, where validation removes it;
+  // the joins to its neighbours are then the arcs of radius d around its end points.
   const double r = s.r + (s.kind == SegKind::kArcCcw ? d : -d);
-  if (r <= tol::kOffsetPoint) return false;
+  if (std::abs(r) <= tol::kOffsetPoint) return false;
   const Vec2 ua = (s.a - s.c) / (s.a - s.c).norm();
   const Vec2 ub = (s.b - s.c) / (s.b - s.c).norm();
   out.a = s.c + r * ua;
   out.b = s.c + r * ub;
-  out.r = r;
+  out.r = std::abs(r);
+  if (inverted && r < 0) *inverted = true;
   return true;
 }
 
@@ -123,6 +128,21 @@ int winding_number(const std::vector<Seg2>& loop, const Vec2& q) {
   return w;
 }
 
+namespace {
+
+// Two curves that touch without crossing (offsets of two islands exactly 2d apart, at the
+// level where they meet): one tangent contact, or two hits closer than kOffsetJoint. Such
+// a contact is no crossing: both loops stay as they are (touching), instead of being
+// split at an ill-conditioned point that stitching cannot follow.
+bool touch_only(const Seg2& s0, const Seg2& s1, const SegHit* hits, int h) {
+  if (h == 2 && (hits[0].p - hits[1].p).norm() > tol::kOffsetJoint) return false;
+  const Vec2 t0 = tangent_at(s0, parameter_of(s0, hits[0].p));
+  const Vec2 t1 = tangent_at(s1, parameter_of(s1, hits[0].p));
+  return std::abs(t0.x() * t1.y() - t0.y() * t1.x()) <= tol::kTangentCross;
+}
+
+}  // namespace
+
 OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
                           const std::vector<double>* area2) {
   std::vector<OffsetRuns> runs(loops.size());
@@ -130,7 +150,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
     runs[l].segs.reserve(loops[l].size());
     for (const Seg2& s : loops[l]) {
       Seg2 o;
-      if (raw_offset(s, d, o)) runs[l].add(s.a, &o, 1);
+      if (raw_offset(s, d, o, &runs[l].inverted)) runs[l].add(s.a, &o, 1);
     }
   }
   return offset_prepared(std::move(runs), loops, d, area2);
@@ -138,7 +158,7 @@ OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
 
 OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
                              const std::vector<std::vector<Seg2>>& loops, double d,
-                             const std::vector<double>* area2) {
+                             const std::vector<double>* area2, double slack) {
   OffsetResult res;
   const double eps = tol::kOffsetPoint;
   std::vector<RawSeg> raw;
@@ -146,7 +166,7 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
   for (const OffsetRuns& r : runs) expected += r.segs.size() + r.runs();
   raw.reserve(expected + expected / 4);
   for (std::size_t l = 0; l < runs.size(); ++l)
-    crude_loop(runs[l], static_cast<std::uint32_t>(l), raw);
+    crude_loop(runs[l], static_cast<std::uint32_t>(l), d, raw);
   res.stats.raw_segments = raw.size();
   const std::size_t n = raw.size();
   if (n == 0) return res;
@@ -178,6 +198,8 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
       if (raw[i].prev == j && !adjacent_may_cross(raw[j].s, raw[i].s)) continue;
       SegHit hits[2];
       const int h = intersect(raw[i].s, raw[j].s, hits, eps, false);
+      if (h > 0 && raw[i].next != j && raw[i].prev != j && touch_only(raw[i].s, raw[j].s, hits, h))
+        continue;
       for (int k = 0; k < h; ++k) {
         const Vec2& p = hits[k].p;
         // The joint shared with a neighbour is not a crossing.
@@ -249,7 +271,7 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
       for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
       grid.emplace(input, d);
     }
-    return !grid->any_closer(sg, d - tol::kOffsetValid);
+    return !grid->any_closer(sg, d - std::max(slack, tol::kOffsetValid));
   };
   // Pieces of one loop are contiguous (raw loops are, and pieces follow raw order).
   for (std::size_t b = 0; b < pieces.size();) {
@@ -261,7 +283,10 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
       // loop its orientation tells the true offset from an inverted remnant; with several,
       // it may also lie wholly within d of another input loop (a band thinner than 2d), so
       // one piece is tested by distance.
-      std::uint8_t ok = same_way[l];
+      // A loop with an inside-out arc is the offset of a stretch narrower than 2d: its
+      // inverted part comes closer than d to the arc it came from, and with no crossing
+      // the whole loop goes with it.
+      std::uint8_t ok = same_way[l] && !runs[l].inverted;
       if (ok && loops.size() > 1) {
         std::size_t best = b;
         for (std::size_t k = b + 1; k < e; ++k)

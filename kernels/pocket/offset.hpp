@@ -4,7 +4,8 @@
 // Input: closed loops with the material on their right (pocket boundaries clockwise,
 // islands counter-clockwise). Each loop is offset by d to its right:
 //  1. raw offset: every line shifted by d, every arc's radius changed by d (an arc whose
-//     radius would vanish collapses and is dropped);
+//     radius would become negative turns inside out, past its centre; it is cut away by
+//     validation, its neighbours meet it with arcs of radius d around its end points);
 //  2. joining (crude loop): where consecutive offsets leave a gap (convex corner) they are
 //     joined by an arc of radius d around the original vertex - the true offset; where they
 //     overlap (concave corner) both are trimmed at their intersection (local
@@ -61,6 +62,7 @@ struct OffsetRuns {
   std::vector<Seg2> segs;
   std::vector<std::uint32_t> start{0};
   std::vector<Vec2> vertex;
+  bool inverted = false;  // some arc turned inside out (raw_offset): the loop needs validation
   void add(const Vec2& v, const Seg2* first, std::size_t count) {
     if (count == 0) return;
     segs.insert(segs.end(), first, first + count);
@@ -71,13 +73,17 @@ struct OffsetRuns {
 };
 // The same as offset_loops, with the raw offsets given per input curve; `shapes` are the
 // input loops as lines/arcs (within the caller's tolerance), used for validation.
-// runs is taken by value: joining trims the runs' ends in place.
+// runs is taken by value: joining trims the runs' ends in place. slack: how much closer
+// than d to the shapes a kept piece may come; the raw offsets and the shapes are both
+// approximations when they come from NURBS curves, so callers pass their tolerances'
+// sum there (the default, tol::kOffsetValid, is for exact lines and arcs).
 OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
                              const std::vector<std::vector<Seg2>>& shapes, double d,
-                             const std::vector<double>* area2 = nullptr);
+                             const std::vector<double>* area2 = nullptr, double slack = 0);
 
-// The raw offset of one segment by d to its right; empty when an arc collapses.
-bool raw_offset(const Seg2& s, double d, Seg2& out);
+// The raw offset of one segment by d to its right (an arc of radius < d on that side turns
+// inside out: radius d - r past its centre); false only when an arc collapses to its centre.
+bool raw_offset(const Seg2& s, double d, Seg2& out, bool* inverted = nullptr);
 
 // Twice the signed area of a closed loop (> 0: counter-clockwise).
 double loop_area2(const std::vector<Seg2>& loop);

@@ -1,6 +1,7 @@
 #include "kernels/pocket/offset_crude.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "kernels/curves/intersect.hpp"
 #include "kernels/geom/tolerance.hpp"
@@ -80,28 +81,99 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
   out.push_back(make_line(prev.b, next.a, prev.source));
 }
 
+// At a right turn whose end segments do not meet (runs of many short arcs, e.g. a NURBS
+// curve's offset, overlap over many segments), the crossing nearest to the vertex among the
+// segments within `reach` mm of the run ends. On success the runs are shortened to it:
+// last (exclusive end of the previous run) and first (start of the next run) move.
+bool trim_overlap(std::vector<Seg2>& segs, std::uint32_t prev_begin, std::uint32_t& last,
+                  std::uint32_t& first, std::uint32_t next_end, const Vec2& v, double reach) {
+  // Candidate segments: walk back from the previous run's end and forward from the next
+  // run's start until `reach` mm of curve are covered, never past each other (one run).
+  std::vector<std::uint32_t> back, ahead;
+  double len = 0;
+  for (std::uint32_t i = last; i > prev_begin && len <= reach;) {
+    --i;
+    back.push_back(i);
+    len += length(segs[i]);
+  }
+  len = 0;
+  for (std::uint32_t j = first; j < next_end && len <= reach; ++j) {
+    ahead.push_back(j);
+    len += length(segs[j]);
+  }
+  double best = std::numeric_limits<double>::infinity();
+  std::uint32_t bi = 0, bj = 0;
+  Vec2 bp = Vec2::Zero();
+  std::vector<Vec2> lo(ahead.size()), hi(ahead.size());
+  for (std::size_t q = 0; q < ahead.size(); ++q) loose_bounds(segs[ahead[q]], lo[q], hi[q]);
+  for (std::uint32_t i : back) {
+    Vec2 ilo, ihi;
+    loose_bounds(segs[i], ilo, ihi);
+    for (std::size_t q = 0; q < ahead.size(); ++q) {
+      const std::uint32_t j = ahead[q];
+      if (i == j || lo[q].x() > ihi.x() || hi[q].x() < ilo.x() || lo[q].y() > ihi.y() ||
+          hi[q].y() < ilo.y())
+        continue;
+      SegHit hits[2];
+      const int n = intersect(segs[i], segs[j], hits, tol::kOffsetPoint);
+      for (int k = 0; k < n; ++k) {
+        const double dv = (hits[k].p - v).norm();
+        if (dv < best) {
+          best = dv;
+          bi = i;
+          bj = j;
+          bp = hits[k].p;
+        }
+      }
+    }
+  }
+  if (!std::isfinite(best)) return false;
+  move_end(segs[bi], bp, true);
+  move_end(segs[bj], bp, false);
+  last = bi + 1;
+  first = bj;
+  return true;
+}
+
 }  // namespace
 
-// The crude offset loop of one input loop, appended to raw.
 // The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
-// raw.
-void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, std::vector<RawSeg>& raw) {
+// raw. d: the offset distance (bounds the search for overlaps at concave joints).
+void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<RawSeg>& raw) {
   const std::size_t n = runs.runs();
   if (n == 0) return;
-  // Join each consecutive pair of runs; a run is emitted once both its ends are settled.
-  // The last join (back to the first run) may still move the first run's start: the
-  // emitted copy is patched afterwards.
-  const auto base = static_cast<std::uint32_t>(raw.size());
-  std::vector<Seg2> joins;
+  // Effective ranges of the runs: joins may trim whole segments off their ends.
+  std::vector<std::uint32_t> first(runs.start.begin(), runs.start.end() - 1),
+      last(runs.start.begin() + 1, runs.start.end());
+  std::vector<std::vector<Seg2>> joins(n);
   for (std::size_t k = 0; k < n; ++k) {
-    joins.clear();
     const std::size_t k1 = (k + 1) % n;
-    join(runs.segs[runs.start[k + 1] - 1], runs.segs[runs.start[k1]], runs.vertex[k1], joins);
-    for (std::uint32_t q = runs.start[k]; q < runs.start[k + 1]; ++q)
-      raw.push_back({runs.segs[q], loop_id, 0, 0, false});
-    for (const Seg2& js : joins) raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
+    Seg2& prev = runs.segs[last[k] - 1];
+    Seg2& next = runs.segs[first[k1]];
+    join(prev, next, runs.vertex[k1], joins[k]);
+    // A connector line at a right turn means the ends missed each other: look further back.
+    const bool missed = joins[k].size() == 1 && !joins[k][0].is_arc();
+    if (!missed) continue;
+    const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
+    if (cross(te, ts) > 0) continue;
+    // The overlap of two offsets at a corner turning by theta reaches d tan(theta / 2) from
+    // the vertex; 20 d covers turns up to ~174 degrees.
+    std::uint32_t l = last[k], f = first[k1];
+    const std::uint32_t prev_begin = k1 == k ? f + 1 : first[k];
+    const std::uint32_t next_end = k1 == k ? l - 1 : last[k1];
+    if (prev_begin >= l || f >= next_end) continue;
+    if (trim_overlap(runs.segs, prev_begin, l, f, next_end, runs.vertex[k1], 20 * d)) {
+      last[k] = l;
+      first[k1] = f;
+      joins[k].clear();
+    }
   }
-  raw[base].s = runs.segs[0];
+  const auto base = static_cast<std::uint32_t>(raw.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    for (std::uint32_t q = first[k]; q < last[k]; ++q)
+      raw.push_back({runs.segs[q], loop_id, 0, 0, false});
+    for (const Seg2& js : joins[k]) raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
+  }
   const auto m = static_cast<std::uint32_t>(raw.size() - base);
   for (std::uint32_t k = 0; k < m; ++k) {
     raw[base + k].prev = base + (k + m - 1) % m;

@@ -16,7 +16,9 @@ struct RawSeg {
 };
 
 // The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
-// raw; joins may trim the runs in place.
-void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, std::vector<RawSeg>& raw);
+// raw; joins may trim the runs in place. At a concave corner whose end segments miss each
+// other (runs of many short arcs overlap over several segments) the runs are cut back to
+// their crossing nearest the vertex, searched within 20 d of curve.
+void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<RawSeg>& raw);
 
 }  // namespace ncpath::pocket_detail

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <numbers>
 
 #include "engine/parallel.hpp"
@@ -147,6 +148,66 @@ TEST(PocketOffset, OffsetEqualToNurbsCurvatureRadius) {
   const PocketOffsetResult small = offset_pocket({r}, p);
   ASSERT_EQ(small.loops.size(), 1u);
   EXPECT_NEAR(-small.loops[0].loop.area2 / 2, std::numbers::pi, 0.01 * 2 * std::numbers::pi + 1e-6);
+}
+
+}  // namespace
+}  // namespace ncpath
+
+namespace ncpath {
+namespace {
+
+// A wavy closed cubic NURBS (rational or not; closing smoothly or at a corner, where its
+// clamped ends meet): the levels do not depend on the tolerance the curve is converted
+// with. Before, some tolerances lost the pocket (a concave corner whose offsets overlap
+// over many short arcs; offsets of arcs smaller than the distance, dropped instead of
+// turned inside out; validation of NURBS offsets without their tolerance).
+Region wavy_blob(bool rational, bool corner) {
+  Nurbs2 c;
+  c.degree = 3;
+  for (int k = 0; k < 24; ++k) {
+    const double a = -2 * std::numbers::pi * k / 24;  // clockwise
+    const double r = 30 + 5 * std::sin(3 * a);
+    c.ctrl.emplace_back(40 + r * std::cos(a), 40 + r * std::sin(a));
+  }
+  if (!corner) c.ctrl.insert(c.ctrl.begin(), 0.5 * (c.ctrl.front() + c.ctrl.back()));
+  c.ctrl.push_back(c.ctrl.front());
+  for (std::size_t k = 0; k < c.ctrl.size(); ++k)
+    c.weights.push_back(rational && k > 0 && k + 1 < c.ctrl.size() ? 1 + 0.6 * std::sin(1.7 * k)
+                                                                   : 1.0);
+  const std::size_t m = c.ctrl.size();
+  c.knots.assign(4, 0.0);
+  for (std::size_t k = 1; k + 3 < m; ++k) c.knots.push_back(static_cast<double>(k) / (m - 3));
+  c.knots.insert(c.knots.end(), 4, 1.0);
+  Region r;
+  r.boundary.nurbs.push_back(c);
+  r.boundary.curves.push_back({make_line(c.ctrl.front(), c.ctrl.back()), 0});
+  return r;
+}
+
+TEST(PocketOffset, NurbsLevelsDoNotDependOnTheTolerance) {
+  for (bool rational : {false, true})
+    for (bool corner : {false, true})
+      for (bool island : {false, true}) {
+        Region r = wavy_blob(rational, corner);
+        if (island) {
+          Profile p;
+          for (const Seg2& s : test::circle({40, 40}, 6, false)) p.curves.push_back({s, -1});
+          r.islands.push_back(p);
+        }
+        std::vector<std::size_t> loops;
+        for (double tol : {0.01, 0.005, 0.002, 0.001}) {
+          SCOPED_TRACE(testing::Message() << "rational " << rational << " corner " << corner
+                                          << " island " << island << " tol " << tol);
+          PocketOffsetParams p;
+          p.tool_radius = 3;
+          p.stepover = 4;
+          p.tolerance = tol;
+          const PocketOffsetResult res = offset_pocket({r}, p);
+          EXPECT_EQ(res.open_fragments, 0u);
+          loops.push_back(res.loops.size());
+          EXPECT_EQ(loops.back(), loops.front());
+        }
+      }
 }
 
 }  // namespace

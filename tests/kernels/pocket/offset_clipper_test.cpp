@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include "kernels/curves/nurbs.hpp"
 #include "kernels/pocket/offset.hpp"
 #include "kernels/pocket/offset_levels.hpp"
 #include "kernels/pocket/uncut.hpp"
@@ -180,6 +181,42 @@ TEST(OffsetVsClipper, WaveLoopAllLevels) {
           << "amplitude " << amplitude << " level " << level;
     }
   }
+}
+
+}  // namespace
+}  // namespace ncpath
+
+namespace ncpath {
+namespace {
+
+// An ellipse (30 x 10: end curvature radius 10^2/30 = 3.3 mm) as hundreds of short arcs,
+// offset by more than its end radius: the end arcs turn inside out (swallowtails) and the
+// result must still close and match Clipper. Also the same after a few levels (arcs of a
+// fraction of a micrometre near the evolute) and a NURBS ellipse that closes at a corner.
+TEST(OffsetVsClipper, ArcsSmallerThanTheDistanceTurnInsideOut) {
+  const Nurbs2 e = nurbs_ellipse({0, 0}, {30, 0}, 1.0 / 3, 0, 2 * std::numbers::pi);
+  std::vector<Seg2> arcs = nurbs_to_arcs(e, 1e-4, 0);
+  ASSERT_GT(arcs.size(), 100u);
+  std::vector<Seg2> cw;  // clockwise: material inside
+  for (auto it = arcs.rbegin(); it != arcs.rend(); ++it) cw.push_back(reversed(*it));
+  for (double d : {2.0, 3.5, 5.0, 8.0}) expect_matches_clipper({cw}, d);
+  // Levels of 1.7 mm: every level closes (the tiny arcs near the ends included).
+  const OffsetLevels lv = offset_levels({cw}, 1.7, 1.7);
+  EXPECT_EQ(lv.open_fragments, 0u);
+  EXPECT_EQ(lv.level_start.size(), 5u);  // 10 / 1.7: levels at 1.7 ... 8.5
+}
+
+// Offsets of two islands 2d apart touch at one point at that level: no crossing, both
+// loops kept as they are (before, the ill-conditioned contact left open fragments).
+TEST(OffsetVsClipper, OffsetsThatTouchExactly) {
+  const std::vector<std::vector<Seg2>> two = {test::rectangle(0, 0, 120, 80, true),
+                                              test::circle({20, 20}, 5, false),
+                                              test::circle({60, 20}, 5, false)};
+  const OffsetResult r = offset_loops(two, 15);  // circles of radius 20, centres 40 apart
+  EXPECT_EQ(r.stats.open_fragments, 0u);
+  expect_matches_clipper(two, 15);
+  const OffsetLevels lv = offset_levels(two, 3, 4);  // level 4 at 15
+  EXPECT_EQ(lv.open_fragments, 0u);
 }
 
 }  // namespace
