@@ -242,6 +242,14 @@ std::string region_name(const std::vector<Region>& regions, std::size_t r) {
 
 }  // namespace
 
+namespace {
+std::string mm(double v) {
+  std::ostringstream os;
+  os << v << " mm";
+  return os.str();
+}
+}  // namespace
+
 std::string validate(const PocketPathParams& p) {
   const double vals[] = {p.tool_radius,       p.stepover, p.stock,        p.tolerance,
                          p.chordal_tolerance, p.top,      p.depth,        p.stepdown,
@@ -249,18 +257,17 @@ std::string validate(const PocketPathParams& p) {
   for (double v : vals)
     if (!std::isfinite(v)) return "pocket parameters must be finite numbers";
   if (!(p.tool_radius > 0)) return "tool diameter must be positive";
-  if (!(p.stepover > 0))
-    return "stepover must be positive (got " + std::to_string(p.stepover) + " mm)";
+  if (!(p.stepover > 0)) return "stepover must be positive (got " + mm(p.stepover) + ")";
   if (p.stepover > 2 * p.tool_radius * (1 + 1e-12))
-    return "stepover " + std::to_string(p.stepover) + " mm is larger than the tool diameter " +
-           std::to_string(2 * p.tool_radius) + " mm: material would be left between passes";
+    return "stepover " + mm(p.stepover) + " is larger than the tool diameter " +
+           mm(2 * p.tool_radius) + ": material would be left between passes";
   if (p.stock < 0) return "stock must not be negative";
   if (!(p.tolerance > 0) || !(p.chordal_tolerance > 0)) return "tolerances must be positive";
-  if (!(p.depth > 0)) return "depth must be positive (got " + std::to_string(p.depth) + " mm)";
+  if (!(p.depth > 0)) return "depth must be positive (got " + mm(p.depth) + ")";
   if (p.stepdown < 0) return "stepdown must not be negative (0: one pass at full depth)";
   if (p.clearance < 0) return "clearance must not be negative";
   if (p.safe_z < p.top + p.clearance)
-    return "safe_z " + std::to_string(p.safe_z) + " mm is below the stock top plus clearance";
+    return "safe_z " + mm(p.safe_z) + " is below the stock top plus clearance";
   if (p.helix_radius < 0) return "helix radius must not be negative";
   if (!(p.ramp_angle_deg > 0 && p.ramp_angle_deg < 90))
     return "ramp angle must lie between 0 and 90 degrees";
@@ -282,10 +289,12 @@ PocketPath plan_pocket(const std::vector<Region>& regions, const PocketPathParam
   std::vector<bool> fits(regions.size(), false);
   for (const PocketLoop& l : off.loops) fits[l.region] = true;
   for (std::size_t r = 0; r < regions.size(); ++r)
-    if (!fits[r])
-      throw std::invalid_argument(region_name(regions, r) + ": the tool (diameter " +
-                                  std::to_string(2 * p.tool_radius) + " mm, stock " +
-                                  std::to_string(p.stock) + " mm) does not fit in the pocket");
+    if (!fits[r]) {
+      std::ostringstream os;
+      os << region_name(regions, r) << ": the tool (diameter " << 2 * p.tool_radius << " mm, stock "
+         << p.stock << " mm) does not fit in the pocket";
+      throw RegionTooSmall(r, os.str());
+    }
   st.loops = off.loops.size();
   st.levels = off.levels;
   st.open_fragments = off.open_fragments;

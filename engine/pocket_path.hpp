@@ -24,6 +24,7 @@
 // tool tip. Material to cut lies on the right of boundaries (clockwise) and islands
 // (counter-clockwise), as everywhere in kernels/pocket.
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -87,9 +88,17 @@ struct PocketPath {
   PocketPathStats stats;
 };
 
+// A region the tool does not fit in (regions[region]): "region 2 (boundary starting at
+// (x, y)): the tool (diameter 6 mm, stock 0 mm) does not fit in the pocket".
+struct RegionTooSmall : std::invalid_argument {
+  RegionTooSmall(std::size_t r, const std::string& message)
+      : std::invalid_argument(message), region(r) {}
+  std::size_t region;  // index into the regions passed in
+};
+
 // Throws std::invalid_argument with a clear message for bad parameters (stepover <= 0 or
-// larger than the tool diameter, depth <= 0, negative stock, ...) and for a region the tool
-// does not fit in ("region 2 (boundary starting at (x, y)): the tool does not fit ...").
+// larger than the tool diameter, depth <= 0, negative stock, ...), RegionTooSmall for a
+// region the tool does not fit in.
 // The output is the same for any thread count.
 PocketPath plan_pocket(const std::vector<Region>& regions, const PocketPathParams& params);
 

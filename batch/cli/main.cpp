@@ -1,8 +1,9 @@
-// ncpath command line: raster, drop and run (a TOML batch). Every command builds the same
-// JobSpec a batch file would, so a job behaves the same whichever way it was given.
+// ncpath command line: raster, drop, offset, pocket and run (a TOML batch). Every command builds
+// the same JobSpec a batch file would, so a job behaves the same whichever way it was given.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <optional>
 
@@ -94,6 +95,64 @@ jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
   return j;
 }
 
+// Options of the profile commands (offset, pocket); defaults as in OffsetParams/PocketParams.
+struct ProfileCli {
+  std::string profile, tool = "flat:6", out = "ncpath-out.h5", name, stepover;
+  int threads = 0;
+  bool quiet = false;
+  double stock = jobs::PocketParams{}.stock;
+  double tolerance = jobs::PocketParams{}.tolerance;
+  double join_tolerance = jobs::PocketParams{}.join_tolerance;
+  GcodeCli gcode;
+};
+
+CLI::Option* add_profile(CLI::App* app, ProfileCli& c) {
+  app->add_option("--profile", c.profile, "Pocket profile: .dxf or .toml (docs/profile-format.md)")
+      ->required();
+  app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
+      ->capture_default_str();
+  CLI::Option* stepover =
+      app->add_option("--stepover", c.stepover,
+                      "Distance between levels: mm, or a percentage of the tool diameter (40%)");
+  app->add_option("--stock", c.stock, "Material left on walls and islands (mm)")
+      ->capture_default_str();
+  app->add_option("--tolerance", c.tolerance, "NURBS-to-arc and arc-to-polyline tolerance (mm)")
+      ->capture_default_str();
+  app->add_option("--join-tolerance", c.join_tolerance,
+                  "Profile end points closer than this are joined (mm)")
+      ->capture_default_str();
+  app->add_option("--out", c.out, "HDF5 file to write")->capture_default_str();
+  app->add_option("--name", c.name, "Job name inside the HDF5 file (default: the command)");
+  app->add_option("--threads", c.threads, "Worker threads, 0 = all cores")->capture_default_str();
+  app->add_flag("-q,--quiet", c.quiet, "No progress bar");
+  add_gcode(app, c.gcode);
+  return stepover;
+}
+
+// The job of a profile command; `check` fills the operation's parameters and returns their
+// first problem ("" when none). A bad tool is reported first.
+void add_profile_job(const ProfileCli& c, jobs::Operation op,
+                     const std::function<std::string(jobs::JobSpec&)>& check,
+                     jobs::BatchSpec& batch, bool& quiet) {
+  jobs::JobSpec j;
+  j.operation = op;
+  j.name = c.name.empty() ? jobs::operation_name(op) : c.name;
+  j.input = c.profile;
+  j.tool_text = c.tool;
+  std::string e = jobs::parse_tool(c.tool, j.tool);
+  if (!e.empty()) e = "--tool: " + e;
+  if (std::string p = check(j); e.empty()) e = p;
+  if (!e.empty()) {
+    j.error = e;
+    j.error_status = "invalid_parameter";
+  }
+  apply_gcode(c.gcode, j);
+  batch.output = c.out;
+  batch.threads = c.threads;
+  quiet = c.quiet;
+  batch.jobs.push_back(std::move(j));
+}
+
 std::string human(double v) {
   char buf[32];
   if (v >= 1e6)
@@ -152,7 +211,7 @@ int main(int argc, char** argv) {
   std::string direction = "x";
   std::vector<double> rect;
   std::optional<double> floor_z;
-  GcodeCli raster_g, drop_g, offset_g;
+  GcodeCli raster_g, drop_g;
   CLI::App* raster = app.add_subcommand("raster", "Zig-zag drop-cutter finishing over a mesh");
   add_common(raster, rc);
   add_gcode(raster, raster_g);
@@ -184,37 +243,39 @@ int main(int argc, char** argv) {
   drop->add_option("--points", points, "CSV of x,y lines (mm); a blank line starts a new path")
       ->required();
 
-  std::string profile, offset_tool = "flat:6", offset_out = "ncpath-out.h5", offset_name,
-                       stepover_text;
-  int offset_threads = 0;
-  bool offset_quiet = false;
+  ProfileCli oc;
   jobs::OffsetParams op;
   CLI::App* offset =
       app.add_subcommand("offset", "Multi-level pocket offset loops of a DXF or TOML profile");
-  offset->add_option("--profile", profile, "Pocket profile: .dxf or .toml (docs/profile-format.md)")
-      ->required();
-  offset->add_option("--tool", offset_tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
-      ->capture_default_str();
-  offset
-      ->add_option("--stepover", stepover_text,
-                   "Distance between levels: mm, or a percentage of the tool diameter (40%)")
-      ->required();
-  offset->add_option("--stock", op.stock, "Material left on walls and islands (mm)")
-      ->capture_default_str();
+  add_profile(offset, oc)->required();
   offset->add_option("--depth", op.depth, "Depth at which loops are written as paths (mm)")
       ->capture_default_str();
-  offset->add_option("--tolerance", op.tolerance, "NURBS-to-arc and arc-to-polyline tolerance (mm)")
+
+  ProfileCli pc;
+  pc.stepover = "50%";
+  jobs::PocketParams pp;
+  std::string order = "outward", milling = "climb";
+  CLI::App* pocket = app.add_subcommand(
+      "pocket",
+      "Linked pocket tool paths (clean-up, entry, depth passes) of a DXF or TOML profile");
+  add_profile(pocket, pc)->capture_default_str();
+  pocket->add_option("--depth", pp.depth, "Pocket depth below the top z = 0 (mm)")->required();
+  pocket->add_option("--stepdown", pp.stepdown, "Depth per pass (mm), 0 = one pass at full depth")
       ->capture_default_str();
-  offset
-      ->add_option("--join-tolerance", op.join_tolerance,
-                   "Profile end points closer than this are joined (mm)")
+  pocket
+      ->add_option("--order", order,
+                   "outward: start at the innermost loop; inward: start at the walls")
+      ->check(CLI::IsMember({"outward", "inward"}))
       ->capture_default_str();
-  offset->add_option("--out", offset_out, "HDF5 file to write")->capture_default_str();
-  offset->add_option("--name", offset_name, "Job name inside the HDF5 file (default: offset)");
-  offset->add_option("--threads", offset_threads, "Worker threads, 0 = all cores")
+  pocket->add_option("--milling", milling, "Cut direction (spindle clockwise, M3)")
+      ->check(CLI::IsMember({"climb", "conventional"}))
       ->capture_default_str();
-  offset->add_flag("-q,--quiet", offset_quiet, "No progress bar");
-  add_gcode(offset, offset_g);
+  pocket->add_option("--helix-radius", pp.helix_radius, "Helix entry radius (mm), 0 = R/2")
+      ->capture_default_str();
+  pocket->add_option("--ramp-angle", pp.ramp_angle, "Helix and ramp descent angle (degrees)")
+      ->capture_default_str();
+  pocket->add_option("--clearance", pp.clearance, "Feed moves start this far above the top (mm)")
+      ->capture_default_str();
 
   std::string batch_file, batch_out;
   int batch_threads = -1;
@@ -245,25 +306,35 @@ int main(int argc, char** argv) {
     quiet = rc.quiet;
     batch.jobs.push_back(std::move(j));
   } else if (offset->parsed()) {
-    jobs::JobSpec j;
-    j.operation = jobs::Operation::kOffset;
-    j.name = offset_name.empty() ? "offset" : offset_name;
-    j.input = profile;
-    j.tool_text = offset_tool;
-    j.offset = op;
-    std::string e = jobs::parse_tool(offset_tool, j.tool);
-    if (!e.empty()) e = "--tool: " + e;
-    if (e.empty()) e = jobs::parse_stepover(stepover_text, j.tool, j.offset.stepover);
-    if (e.empty()) e = jobs::validate(j.offset);
-    if (!e.empty()) {
-      j.error = e;
-      j.error_status = "invalid_parameter";
-    }
-    apply_gcode(offset_g, j);
-    batch.output = offset_out;
-    batch.threads = offset_threads;
-    quiet = offset_quiet;
-    batch.jobs.push_back(std::move(j));
+    add_profile_job(
+        oc, jobs::Operation::kOffset,
+        [&](jobs::JobSpec& j) {
+          j.offset = op;
+          j.offset.stock = oc.stock;
+          j.offset.tolerance = oc.tolerance;
+          j.offset.join_tolerance = oc.join_tolerance;
+          std::string e = jobs::parse_stepover(oc.stepover, j.tool, j.offset.stepover);
+          return e.empty() ? jobs::validate(j.offset) : e;
+        },
+        batch, quiet);
+  } else if (pocket->parsed()) {
+    add_profile_job(
+        pc, jobs::Operation::kPocket,
+        [&](jobs::JobSpec& j) {
+          j.pocket = pp;
+          j.pocket.stock = pc.stock;
+          j.pocket.tolerance = pc.tolerance;
+          j.pocket.join_tolerance = pc.join_tolerance;
+          std::string e = jobs::parse_stepover(pc.stepover, j.tool, j.pocket.stepover);
+          if (e.empty() && !(e = jobs::parse_order(order, j.pocket.order)).empty())
+            e = "--order " + e;
+          if (e.empty() && !(e = jobs::parse_milling(milling, j.pocket.milling)).empty())
+            e = "--milling " + e;
+          return e.empty() ? jobs::validate(j.pocket, j.tool) : e;
+        },
+        batch, quiet);
+    // The pocket's rapids run at the safe height even without G-code.
+    batch.jobs.back().gcode_safe_z = pc.gcode.safe_z;
   } else if (drop->parsed()) {
     jobs::JobSpec j = job_from(dc, jobs::Operation::kDrop);
     j.points = points;

@@ -7,6 +7,7 @@
 
 #include "batch/io/mesh_reader.hpp"
 #include "batch/jobs/offset_job.hpp"
+#include "batch/jobs/pocket_job.hpp"
 #include "batch/jobs/points_csv.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "engine/drop_points.hpp"
@@ -99,7 +100,7 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
         if (job.gcode.empty()) return nullptr;
         out::GcodeParams gp = job.gcode_params;
         gp.job_name = job.name;
-        gp.safe_z = job.gcode_safe_z.value_or(part_top + 5.0);
+        gp.safe_z = job.gcode_safe_z.value_or(part_top + kDefaultSafeAboveTop);
         if (gp.safe_z < part_top)
           throw std::invalid_argument("gcode.safe_z " + std::to_string(gp.safe_z) +
                                       " mm is below the part's top " + std::to_string(part_top) +
@@ -109,6 +110,10 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
       };
       if (job.operation == Operation::kOffset) {
         const OffsetJobSummary r = run_offset_job(job, cl, open_gcode(0.0), stats);
+        o.points = r.points;
+        o.compute_s = r.compute_s;
+      } else if (job.operation == Operation::kPocket) {
+        const PocketJobSummary r = run_pocket_job(job, cl, open_gcode(0.0), stats);
         o.points = r.points;
         o.compute_s = r.compute_s;
       } else {

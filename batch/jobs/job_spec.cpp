@@ -20,6 +20,8 @@ const char* operation_name(Operation op) {
       return "drop";
     case Operation::kOffset:
       return "offset";
+    case Operation::kPocket:
+      return "pocket";
   }
   return "?";
 }
@@ -60,6 +62,53 @@ std::string validate(const OffsetParams& p) {
   else if (!(std::isfinite(p.join_tolerance) && p.join_tolerance > 0))
     os << "join_tolerance must be a positive number of mm, got " << p.join_tolerance;
   return os.str();
+}
+
+std::string validate(const PocketParams& p, const Cutter& tool) {
+  std::ostringstream os;
+  auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
+  if (!(std::isfinite(p.stepover) && p.stepover > 0))
+    os << "stepover must be a positive number of mm, got " << p.stepover;
+  else if (p.stepover > 2 * tool.radius)
+    os << "stepover " << p.stepover << " mm is larger than the tool diameter " << 2 * tool.radius
+       << " mm: material would be left between the loops (at most 100%)";
+  else if (!(std::isfinite(p.depth) && p.depth > 0))
+    os << "depth must be a positive number of mm below the top, got " << p.depth;
+  else if (!non_negative(p.stepdown))
+    os << "stepdown must be >= 0 mm (0 = one pass at full depth), got " << p.stepdown;
+  else if (!non_negative(p.stock))
+    os << "stock must be >= 0 mm, got " << p.stock;
+  else if (!(std::isfinite(p.tolerance) && p.tolerance > 0))
+    os << "tolerance must be a positive number of mm, got " << p.tolerance;
+  else if (!(std::isfinite(p.join_tolerance) && p.join_tolerance > 0))
+    os << "join_tolerance must be a positive number of mm, got " << p.join_tolerance;
+  else if (!non_negative(p.helix_radius))
+    os << "helix_radius must be >= 0 mm (0 = half the tool radius), got " << p.helix_radius;
+  else if (!(std::isfinite(p.ramp_angle) && p.ramp_angle > 0 && p.ramp_angle < 90))
+    os << "ramp_angle must be in (0, 90) degrees, got " << p.ramp_angle;
+  else if (!non_negative(p.clearance))
+    os << "clearance must be >= 0 mm, got " << p.clearance;
+  return os.str();
+}
+
+std::string parse_order(const std::string& text, CutOrder& out) {
+  if (text == "outward")
+    out = CutOrder::kOutward;
+  else if (text == "inward")
+    out = CutOrder::kInward;
+  else
+    return "must be \"outward\" or \"inward\", got \"" + text + "\"";
+  return "";
+}
+
+std::string parse_milling(const std::string& text, Milling& out) {
+  if (text == "climb")
+    out = Milling::kClimb;
+  else if (text == "conventional")
+    out = Milling::kConventional;
+  else
+    return "must be \"climb\" or \"conventional\", got \"" + text + "\"";
+  return "";
 }
 
 std::string parse_tool(const std::string& text, Cutter& out) {
@@ -197,21 +246,42 @@ void parse_raster_params(Keys& k, RasterParams& p) {
   k.number("bin_width", p.bin_width);
 }
 
+// stepover: a number (mm) or a string percentage of the tool diameter. False when absent.
+bool parse_stepover_key(Keys& k, const Cutter& tool, double& out) {
+  if (!k.is_string("stepover")) return k.number("stepover", out);
+  std::string text;
+  if (k.string("stepover", text))
+    if (std::string e = parse_stepover(text, tool, out); !e.empty()) k.fail("stepover", e);
+  return true;
+}
+
 void parse_offset_params(Keys& k, JobSpec& job) {
   OffsetParams& p = job.offset;
-  // stepover: a number (mm) or a string percentage of the tool diameter.
-  std::string text;
-  if (k.is_string("stepover")) {
-    if (k.string("stepover", text))
-      if (std::string e = parse_stepover(text, job.tool, p.stepover); !e.empty())
-        k.fail("stepover", e);
-  } else if (!k.number("stepover", p.stepover)) {
+  if (!parse_stepover_key(k, job.tool, p.stepover))
     k.fail("stepover", "is required (mm, or a percentage of the tool diameter like \"40%\")");
-  }
   k.number("stock", p.stock);
   k.number("depth", p.depth);
   k.number("tolerance", p.tolerance);
   k.number("join_tolerance", p.join_tolerance);
+}
+
+void parse_pocket_params(Keys& k, JobSpec& job) {
+  PocketParams& p = job.pocket;
+  parse_stepover_key(k, job.tool, p.stepover);  // absent: the default set by parse_job
+  k.number("stock", p.stock);
+  if (!k.number("depth", p.depth) && k.error.empty())
+    k.fail("depth", "is required for a pocket job (mm below the top, > 0)");
+  k.number("stepdown", p.stepdown);
+  k.number("tolerance", p.tolerance);
+  k.number("join_tolerance", p.join_tolerance);
+  std::string text;
+  if (k.string("order", text))
+    if (std::string e = parse_order(text, p.order); !e.empty()) k.fail("order", e);
+  if (k.string("milling", text))
+    if (std::string e = parse_milling(text, p.milling); !e.empty()) k.fail("milling", e);
+  k.number("helix_radius", p.helix_radius);
+  k.number("ramp_angle", p.ramp_angle);
+  k.number("clearance", p.clearance);
 }
 
 JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem::path& base) {
@@ -227,19 +297,25 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     job.operation = Operation::kDrop;
   else if (op == "offset")
     job.operation = Operation::kOffset;
+  else if (op == "pocket")
+    job.operation = Operation::kPocket;
   else
-    k.fail("operation", "must be \"raster\", \"drop\" or \"offset\", got \"" + op + "\"");
+    k.fail("operation",
+           "must be \"raster\", \"drop\", \"offset\" or \"pocket\", got \"" + op + "\"");
   std::string input;
   if (k.string("input", input))
     job.input = (base / input).lexically_normal();
   else
-    k.fail("input", "is required (a mesh file: STL or OFF)");
+    k.fail("input", job.operation == Operation::kOffset || job.operation == Operation::kPocket
+                        ? "is required (a profile: DXF or TOML)"
+                        : "is required (a mesh file: STL or OFF)");
   if (k.string("tool", job.tool_text)) {
     if (std::string e = parse_tool(job.tool_text, job.tool); !e.empty() && k.error.empty())
       k.error = e;  // already names the tool
   } else {
     k.fail("tool", "is required (e.g. \"ball:5\")");
   }
+  job.pocket.stepover = kDefaultPocketStepoverFraction * 2 * job.tool.radius;
   if (const toml::table* tt = k.table("transform")) {
     Keys tk(*tt, "transform.");
     tk.number("scale", job.transform.scale);
@@ -258,6 +334,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       parse_raster_params(pk, job.raster);
     } else if (job.operation == Operation::kOffset) {
       parse_offset_params(pk, job);
+    } else if (job.operation == Operation::kPocket) {
+      parse_pocket_params(pk, job);
     } else {
       std::string pts;
       if (pk.string("points", pts)) job.points = (base / pts).lexically_normal();
@@ -267,6 +345,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       if (std::string e = validate(job.raster); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kOffset)
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kPocket)
+      if (std::string e = validate(job.pocket, job.tool); !e.empty()) pk.fail("", e);
     if (!pk.error.empty()) k.error = k.error.empty() ? pk.error : k.error;
   }
   if (const toml::table* gt = k.table("gcode")) {
@@ -290,6 +370,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
   }
   if (job.operation == Operation::kOffset && !(job.offset.stepover > 0) && k.error.empty())
     k.fail("params.stepover", "is required for an offset job (mm, or a percentage like \"40%\")");
+  if (job.operation == Operation::kPocket && !(job.pocket.depth > 0) && k.error.empty())
+    k.fail("params.depth", "is required for a pocket job (mm below the top, > 0)");
   if (job.operation == Operation::kDrop && job.points.empty())
     k.fail("params.points", "is required for a drop job (CSV of x,y lines)");
   k.finish();
@@ -393,6 +475,20 @@ std::string params_json(const JobSpec& job) {
     j["depth"] = job.offset.depth;
     j["tolerance"] = job.offset.tolerance;
     j["join_tolerance"] = job.offset.join_tolerance;
+  } else if (job.operation == Operation::kPocket) {
+    const PocketParams& p = job.pocket;
+    j["stepover"] = p.stepover;
+    j["stock"] = p.stock;
+    j["depth"] = p.depth;
+    j["stepdown"] = p.stepdown;
+    j["tolerance"] = p.tolerance;
+    j["join_tolerance"] = p.join_tolerance;
+    j["order"] = p.order == CutOrder::kOutward ? "outward" : "inward";
+    j["milling"] = p.milling == Milling::kClimb ? "climb" : "conventional";
+    j["helix_radius"] = p.helix_radius;
+    j["ramp_angle"] = p.ramp_angle;
+    j["clearance"] = p.clearance;
+    j["safe_z"] = job.gcode_safe_z.value_or(kDefaultSafeAboveTop);
   } else {
     j["points"] = job.points.string();
   }

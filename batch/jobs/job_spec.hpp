@@ -9,7 +9,7 @@
 //   threads = 0                  # 0 = all cores
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
-//   operation = "raster"          # "raster", "drop" or "offset"
+//   operation = "raster"          # "raster", "drop", "offset" or "pocket"
 //   input     = "../datasets/cache/meshes/bunny00.off"
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
 //   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
@@ -26,15 +26,16 @@
 #include <vector>
 
 #include "batch/output/gcode_writer.hpp"
+#include "engine/pocket_path.hpp"
 #include "engine/raster.hpp"
 #include "kernels/cutters/cutter.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::jobs {
 
-enum class Operation : std::uint8_t { kRaster, kDrop, kOffset };
+enum class Operation : std::uint8_t { kRaster, kDrop, kOffset, kPocket };
 
-// The offset operation (pocket offset loops, no linking yet).
+// The offset operation (pocket offset loops, unlinked; PocketParams for tool paths).
 struct OffsetParams {
   double stepover = 0;           // mm; from "stepover = 2.4" or "stepover = \"40%\"" (of D)
   double stock = 0;              // mm left on walls and islands
@@ -42,6 +43,28 @@ struct OffsetParams {
   double tolerance = 0.01;       // mm: NURBS to arcs, and arcs to polylines for the paths
   double join_tolerance = 1e-6;  // mm: profile end points closer than this are joined
 };
+
+// The pocket operation (linked pocket tool paths, engine/pocket_path.hpp). The stock top is
+// z = 0; the floor z = -depth.
+struct PocketParams {
+  double stepover = 0;           // mm; 0 until parsed: "stepover" absent means 50% of D
+  double stock = 0;              // mm left on walls and islands
+  double depth = 0;              // mm below the top, > 0 (required)
+  double stepdown = 0;           // mm per depth pass; 0 = one pass at full depth
+  double tolerance = 0.01;       // mm: NURBS to arcs, and arcs to polylines for the paths
+  double join_tolerance = 1e-6;  // mm: profile end points closer than this are joined
+  CutOrder order = CutOrder::kOutward;
+  Milling milling = Milling::kClimb;
+  double helix_radius = 0;  // mm; 0 = half the tool radius
+  double ramp_angle = 3;    // degrees, helix and ramp descent, in (0, 90)
+  double clearance = 1;     // mm above the top where feed moves start
+};
+
+// Stepover of a pocket job when none is given: this fraction of the tool diameter.
+inline constexpr double kDefaultPocketStepoverFraction = 0.5;
+// Safe height of rapids when none is given: this many mm above the part's top (meshes) or
+// above z = 0 (profile jobs, whose stock top is z = 0).
+inline constexpr double kDefaultSafeAboveTop = 5;
 
 struct JobSpec {
   std::string name;
@@ -53,10 +76,12 @@ struct JobSpec {
   Cutter tool;
   RasterParams raster;
   OffsetParams offset;
+  PocketParams pocket;
   std::filesystem::path gcode;  // also write the job's paths as G-code here (empty: no)
   out::GcodeParams gcode_params;
   // Safe height for rapids, mm. Unset: 5 mm above the part's top for mesh jobs (z = 0 for
-  // pockets). A given height below a mesh's top is rejected.
+  // pockets). A given height below a mesh's top is rejected. Pocket jobs also use it for
+  // their rapid paths in the HDF5 file, with or without G-code.
   std::optional<double> gcode_safe_z;
   std::string error;         // non-empty: the spec is invalid; status + message below
   std::string error_status;  // "invalid_parameter"
@@ -77,12 +102,18 @@ BatchSpec parse_batch_file(const std::filesystem::path& path);
 BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
                            const std::string& source_name);
 
-const char* operation_name(Operation op);  // "raster", "drop", "offset"
+const char* operation_name(Operation op);  // "raster", "drop", "offset", "pocket"
 
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);
 // "" when usable, else a message naming the key.
 std::string validate(const OffsetParams& params);
+// "" when usable, else a message naming the key. tool: stepover may not exceed its diameter.
+std::string validate(const PocketParams& params, const Cutter& tool);
+// "outward" / "inward" and "climb" / "conventional"; "" or an error to follow the key's name
+// ("must be \"outward\" or \"inward\", got \"up\"").
+std::string parse_order(const std::string& text, CutOrder& out);
+std::string parse_milling(const std::string& text, Milling& out);
 // "linuxcnc" / "grbl" -> dialect; error message or "".
 std::string parse_dialect(const std::string& text, out::GcodeDialect& out);
 

@@ -1,14 +1,10 @@
 #include "batch/jobs/offset_job.hpp"
 
 #include <algorithm>
-#include <cctype>
-#include <stdexcept>
 
-#include "batch/io/dxf_reader.hpp"
-#include "batch/io/profile_toml.hpp"
+#include "batch/jobs/profile_input.hpp"
 #include "engine/pocket_offset.hpp"
 #include "engine/run_control.hpp"
-#include "kernels/pocket/chain.hpp"
 
 namespace ncpath::jobs {
 
@@ -16,33 +12,12 @@ namespace {
 
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
-io::ProfileSoup read_profile(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".dxf") return io::read_dxf(path);
-  if (ext == ".toml") return io::read_profile_toml(path);
-  throw io::ReadError(
-      path, "",
-      "unknown profile format '" + ext + "' (expected .dxf or .toml, see docs/profile-format.md)");
-}
-
 }  // namespace
 
 OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats) {
   OffsetJobSummary summary;
-  Stopwatch read_clock;
-  const io::ProfileSoup soup = read_profile(job.input);
-  const ChainResult chained =
-      chain_and_nest(soup.curves, soup.nurbs, soup.sources, job.offset.join_tolerance);
-  if (!chained.error.empty()) throw io::ReadError(job.input, "", chained.error);
-  stats.push_back({"profile_curves", i64(soup.curves.size()), ""});
-  stats.push_back({"zero_length_dropped", i64(soup.zero_length_dropped), ""});
-  stats.push_back({"warnings", i64(soup.warnings.size()), ""});
-  stats.push_back({"largest_gap_closed", chained.largest_gap_closed, "mm"});
-  stats.push_back({"regions", i64(chained.regions.size()), ""});
-  stats.push_back({"read_s", read_clock.seconds(), "s"});
+  const ProfileInput in = read_profile_regions(job.input, job.offset.join_tolerance, stats);
 
   Stopwatch compute_clock;
   PocketOffsetParams p;
@@ -50,7 +25,7 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWr
   p.stepover = job.offset.stepover;
   p.stock = job.offset.stock;
   p.tolerance = job.offset.tolerance;
-  const PocketOffsetResult res = offset_pocket(chained.regions, p);
+  const PocketOffsetResult res = offset_pocket(in.regions, p);
   summary.compute_s = compute_clock.seconds();
 
   Stopwatch write_clock;

@@ -1,7 +1,7 @@
 #pragma once
 // The offset operation of a job: read a pocket profile (DXF or TOML), chain and nest it,
-// compute the multi-level offset loops, write them (exact segments, levels, OGH edges) and,
-// until path linking exists, one closed CL path per loop at z = -depth.
+// compute the multi-level offset loops, write them (exact segments, levels, OGH edges) and
+// one closed, unlinked CL path per loop at z = -depth (pocket_job.hpp links them).
 #include <cstdint>
 #include <vector>
 
@@ -16,8 +16,8 @@ struct OffsetJobSummary {
   double compute_s = 0;
 };
 
-// Throws io::ReadError for unreadable or malformed profiles, std::invalid_argument for
-// profiles that do not chain into closed, non-crossing loops.
+// Throws io::ReadError for unreadable or malformed profiles and for profiles that do not
+// chain into closed, non-crossing loops.
 // gcode: when not null, the loop paths are written there too.
 OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats);

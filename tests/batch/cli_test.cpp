@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "batch/io/stl_writer.hpp"
+#include "tests/batch/cli_run.hpp"
 #include "tests/batch/output/h5_read.hpp"
 #include "tests/support/meshes.hpp"
 
@@ -16,21 +17,9 @@ namespace {
 
 namespace h5 = out::test;
 
-struct CmdResult {
-  int exit_code;
-  std::string output;
-};
-
-CmdResult ncpath(const std::string& args) {
-  const std::string cmd = std::string(NCPATH_BINARY_DIR) + "/batch/ncpath " + args + " 2>&1";
-  CmdResult r{-1, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (p && fgets(buf.data(), buf.size(), p)) r.output += buf.data();
-  const int status = p ? pclose(p) : -1;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using test::CmdResult;
+using test::ncpath;
+using test::slurp;
 
 // A folder of its own per test: ctest runs the tests of this binary in parallel processes.
 std::filesystem::path fixture_dir() {
@@ -179,11 +168,6 @@ radius = 5
              " --tool flat:6 --stepover 2 --quiet --out " + (dir / "bad.h5").string());
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_NE(bad.output.find("invalid_input"), std::string::npos) << bad.output;
-}
-
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 TEST(Cli, GcodeIsWrittenWithASafeHeightAboveThePart) {

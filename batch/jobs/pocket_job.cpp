@@ -1,0 +1,111 @@
+#include "batch/jobs/pocket_job.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "batch/jobs/profile_input.hpp"
+#include "engine/pocket_path.hpp"
+#include "engine/run_control.hpp"
+
+namespace ncpath::jobs {
+
+namespace {
+
+std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+
+PocketPathParams path_params(const JobSpec& job, const out::GcodeWriter* gcode) {
+  const PocketParams& q = job.pocket;
+  PocketPathParams p;
+  p.tool_radius = job.tool.radius;
+  p.stepover = q.stepover;
+  p.stock = q.stock;
+  p.tolerance = q.tolerance;
+  // The paths are polylines within the tolerance; when G-code is written they are finer than
+  // its arc tolerance, so that the G-code writer can fit the arcs back.
+  p.chordal_tolerance =
+      gcode ? std::min(q.tolerance, gcode->params().arc_tolerance / 4) : q.tolerance;
+  p.top = 0;
+  p.depth = q.depth;
+  p.stepdown = q.stepdown;
+  p.clearance = q.clearance;
+  // One rapid height for the HDF5 paths and the G-code program.
+  p.safe_z =
+      gcode ? gcode->params().safe_z : job.gcode_safe_z.value_or(p.top + kDefaultSafeAboveTop);
+  p.order = q.order;
+  p.milling = q.milling;
+  p.helix_radius = q.helix_radius;
+  p.ramp_angle_deg = q.ramp_angle;
+  return p;
+}
+
+void push_path_stats(const PocketPathStats& s, std::vector<out::StatValue>& stats) {
+  stats.push_back({"loops", i64(s.loops), ""});
+  stats.push_back({"levels", i64(s.levels), ""});
+  stats.push_back({"open_fragments", i64(s.open_fragments), ""});
+  stats.push_back({"components", i64(s.components), ""});
+  stats.push_back({"depth_passes", i64(s.depth_passes), ""});
+  stats.push_back({"links", i64(s.links), ""});
+  stats.push_back({"cleanup_curves", i64(s.cleanup_curves), ""});
+  stats.push_back({"cleanup_length", s.cleanup_length, "mm"});
+  stats.push_back({"cut_length", s.cut_length, "mm"});
+  stats.push_back({"link_length", s.link_length, "mm"});
+  stats.push_back({"rapid_length", s.rapid_length, "mm"});
+  stats.push_back({"retractions", i64(s.retractions), ""});
+  stats.push_back({"uncut_area_before", s.uncut_area_before, "mm^2"});
+  stats.push_back({"uncut_area_after", s.uncut_area_after, "mm^2"});
+  stats.push_back({"unreachable_area", s.unreachable_area, "mm^2"});
+  stats.push_back({"slotting_length", s.slotting_length, "mm"});
+  stats.push_back({"helix_entries", i64(s.helix_entries), ""});
+  stats.push_back({"ramp_entries", i64(s.ramp_entries), ""});
+  stats.push_back({"plunge_entries", i64(s.plunge_entries), ""});
+  stats.push_back({"offset_s", s.offset_s, "s"});
+  stats.push_back({"uncut_s", s.uncut_s, "s"});
+  stats.push_back({"link_s", s.link_s, "s"});
+  stats.push_back({"path_s", s.path_s, "s"});
+}
+
+}  // namespace
+
+PocketJobSummary run_pocket_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
+                                std::vector<out::StatValue>& stats) {
+  PocketJobSummary summary;
+  const ProfileInput in = read_profile_regions(job.input, job.pocket.join_tolerance, stats);
+
+  const PocketPathParams p = path_params(job, gcode);
+  if (p.safe_z < p.top + p.clearance) {
+    std::ostringstream os;
+    os << "safe height (gcode.safe_z, --safe-z) " << p.safe_z
+       << " mm is below the clearance height " << p.top + p.clearance << " mm (top " << p.top
+       << " + clearance " << p.clearance
+       << "): rapids must run above the plane where feed moves start";
+    throw std::invalid_argument(os.str());
+  }
+  Stopwatch compute_clock;
+  PocketPath path;
+  try {
+    path = plan_pocket(in.regions, p);
+  } catch (const RegionTooSmall& e) {
+    // The user drew entities: name those too.
+    const std::string names = boundary_entities(in, e.region);
+    throw std::invalid_argument(names.empty()
+                                    ? std::string(e.what())
+                                    : e.what() + std::string(" (boundary: ") + names + ")");
+  }
+  summary.compute_s = compute_clock.seconds();
+
+  Stopwatch write_clock;
+  ClChunk& c = path.cl;
+  cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+  if (gcode) gcode->append(c);
+  summary.points = c.point_count();
+  const double write_s = write_clock.seconds();
+
+  push_path_stats(path.stats, stats);
+  stats.push_back({"points", i64(summary.points), ""});
+  stats.push_back({"compute_s", summary.compute_s, "s"});
+  stats.push_back({"write_s", write_s, "s"});
+  return summary;
+}
+
+}  // namespace ncpath::jobs

@@ -1,0 +1,29 @@
+#pragma once
+// The pocket operation of a job: read a pocket profile (DXF or TOML), chain and nest it,
+// plan the linked pocket tool path (engine/pocket_path.hpp: offset loops, clean-up of uncut
+// regions, helix/ramp/plunge entry, depth passes) and write it as CL paths, in cutting
+// order, and as G-code when asked. Every PocketPathStats field becomes a statistic.
+#include <cstdint>
+#include <vector>
+
+#include "batch/jobs/job_spec.hpp"
+#include "batch/output/cl_writer.hpp"
+#include "batch/output/gcode_writer.hpp"
+
+namespace ncpath::jobs {
+
+struct PocketJobSummary {
+  std::uint64_t points = 0;
+  double compute_s = 0;  // plan_pocket, all stages
+};
+
+// Throws io::ReadError for unreadable or malformed profiles and for profiles that do not
+// chain into closed, non-crossing loops; std::invalid_argument for parameters the planner
+// refuses and for a region the tool does not fit in (the message then names the input
+// entities of that region's boundary, e.g. "LWPOLYLINE 2F").
+// gcode: when not null, the path is written there too; its safe height is the path's rapid
+// height (else job.gcode_safe_z, else 5 mm above the top z = 0).
+PocketJobSummary run_pocket_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
+                                std::vector<out::StatValue>& stats);
+
+}  // namespace ncpath::jobs

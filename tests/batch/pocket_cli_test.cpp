@@ -1,0 +1,254 @@
+// The pocket command and the pocket job end to end: the linked path in HDF5 (kinds, depths,
+// continuity), every statistic with its unit, the G-code program, thread determinism, and
+// bad parameters reported with the key (or, for a tool too big, with the boundary's entity).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "tests/batch/cli_run.hpp"
+#include "tests/batch/io/dxf_test_util.hpp"
+#include "tests/batch/output/h5_read.hpp"
+
+namespace ncpath {
+namespace {
+
+namespace h5 = out::test;
+using test::CmdResult;
+using test::ncpath;
+using test::slurp;
+
+// A 60 x 40 rectangle with a circular island of radius 5 at (30, 20): one connected pocket.
+constexpr const char* kPlate = R"(
+[[loop]]
+segments = [ { line = [[0, 0], [60, 0]] }, { line_to = [60, 40] }, { line_to = [0, 40] },
+             { line_to = [0, 0] } ]
+[[circle]]
+center = [30, 20]
+radius = 5
+)";
+
+// A folder of its own per test (ctest runs the tests of this binary in parallel processes)
+// holding plate.toml.
+std::filesystem::path fixture_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto dir = h5::out_dir(std::string("pocket_cli_") + (info ? info->name() : "none"));
+  std::ofstream(dir / "plate.toml") << kPlate;
+  return dir;
+}
+
+std::string args(const std::filesystem::path& dir, const std::string& out) {
+  return "pocket --profile " + (dir / "plate.toml").string() + " --quiet --out " +
+         (dir / out).string();
+}
+
+double stat(hid_t f, const std::string& job, const std::string& name) {
+  const auto v = h5::read_all<double>(f, "/jobs/" + job + "/stats/" + name, H5T_NATIVE_DOUBLE);
+  return v.empty() ? NAN : v[0];
+}
+
+std::string stat_unit(hid_t f, const std::string& job, const std::string& name) {
+  const std::string path = "/jobs/" + job + "/stats/" + name;
+  h5::Id ds(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "open " + path);
+  return h5::has_attr(ds, "unit") ? h5::attr_str(ds, "unit") : "";
+}
+
+TEST(PocketCli, WritesOneLinkedPathWithStatsAndGcode) {
+  const auto dir = fixture_dir();
+  const CmdResult r =
+      ncpath(args(dir, "p.h5") + " --tool flat:6 --stepover 50% --depth 4 --stepdown 2 --gcode " +
+             (dir / "p.ngc").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "p.h5");
+  h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "operation"), "pocket");
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+  const std::string params = h5::attr_str(job, "params");
+  for (const char* s : {"\"stepover\":3.0", "\"depth\":4.0", "\"stepdown\":2.0",
+                        "\"order\":\"outward\"", "\"milling\":\"climb\"", "\"safe_z\":5.0"})
+    EXPECT_NE(params.find(s), std::string::npos) << s << " in " << params;
+
+  const auto pts = h5::read_all<double>(f, "/jobs/pocket/cl/points", H5T_NATIVE_DOUBLE);
+  const auto off = h5::read_all<std::int64_t>(f, "/jobs/pocket/cl/path_offsets", H5T_NATIVE_INT64);
+  const auto kind = h5::read_all<std::uint8_t>(f, "/jobs/pocket/cl/path_kind", H5T_NATIVE_UINT8);
+  const auto contact =
+      h5::read_all<std::uint8_t>(f, "/jobs/pocket/cl/contact_kind", H5T_NATIVE_UINT8);
+  ASSERT_GT(kind.size(), 2u);
+  ASSERT_EQ(off.size(), kind.size() + 1);
+  ASSERT_EQ(static_cast<std::size_t>(off.back()) * 3, pts.size());
+  EXPECT_TRUE(std::all_of(contact.begin(), contact.end(), [](std::uint8_t c) { return c == 0; }));
+  // Cuts and links at depth; z between the floor and the safe height; the floor reached;
+  // links at the depth of a pass (never above the top).
+  EXPECT_NE(std::find(kind.begin(), kind.end(), 0), kind.end());
+  EXPECT_NE(std::find(kind.begin(), kind.end(), 1), kind.end());
+  double z_min = INFINITY;
+  for (std::size_t k = 0; k < kind.size(); ++k)
+    for (std::int64_t i = off[k]; i < off[k + 1]; ++i) {
+      const double z = pts[3 * i + 2];
+      EXPECT_GE(z, -4 - 1e-9);
+      EXPECT_LE(z, 5 + 1e-9);
+      if (kind[k] == 1) {
+        EXPECT_LT(z, 0) << "link path " << k << " above the top";
+      }
+      z_min = std::min(z_min, z);
+    }
+  EXPECT_NEAR(z_min, -4, 1e-9);
+  // One path: each path starts where the previous one ended.
+  for (std::size_t k = 1; k < kind.size(); ++k) {
+    if (off[k] == off[k - 1] || off[k + 1] == off[k]) continue;
+    const std::int64_t end = off[k] - 1, start = off[k];
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(pts[3 * end + c], pts[3 * start + c], 1e-9)
+          << "between paths " << k - 1 << " and " << k;
+  }
+
+  // Every statistic of the planner, with its unit.
+  EXPECT_GT(stat(f, "pocket", "cut_length"), 0);
+  EXPECT_EQ(stat(f, "pocket", "uncut_area_after"), 0);
+  EXPECT_EQ(stat(f, "pocket", "depth_passes"), 2);
+  EXPECT_EQ(stat(f, "pocket", "components"), 1);
+  EXPECT_EQ(stat(f, "pocket", "retractions"), 0);  // one connected pocket
+  EXPECT_EQ(stat(f, "pocket", "open_fragments"), 0);
+  EXPECT_GT(stat(f, "pocket", "loops"), 2);
+  EXPECT_EQ(stat(f, "pocket", "points"), static_cast<double>(off.back()));
+  EXPECT_GE(stat(f, "pocket", "helix_entries") + stat(f, "pocket", "ramp_entries") +
+                stat(f, "pocket", "plunge_entries"),
+            1);
+  for (const char* s : {"cleanup_length", "cut_length", "link_length", "rapid_length",
+                        "slotting_length", "largest_gap_closed"})
+    EXPECT_EQ(stat_unit(f, "pocket", s), "mm") << s;
+  for (const char* s : {"uncut_area_before", "uncut_area_after", "unreachable_area"})
+    EXPECT_EQ(stat_unit(f, "pocket", s), "mm^2") << s;
+  for (const char* s :
+       {"offset_s", "uncut_s", "link_s", "path_s", "read_s", "write_s", "compute_s"})
+    EXPECT_EQ(stat_unit(f, "pocket", s), "s") << s;
+  for (const char* s : {"loops", "levels", "links", "cleanup_curves", "gcode_arcs"})
+    EXPECT_EQ(stat_unit(f, "pocket", s), "") << s;
+
+  const std::string g = slurp(dir / "p.ngc");
+  EXPECT_NE(g.find("G21 G90"), std::string::npos);
+  EXPECT_NE(g.find("Z-4.0000"), std::string::npos);
+  EXPECT_TRUE(g.find("G2 ") != std::string::npos || g.find("G3 ") != std::string::npos);
+  EXPECT_NE(g.find("M2"), std::string::npos);
+}
+
+TEST(PocketCli, OneAndTwoThreadsWriteIdenticalPaths) {
+  const auto dir = fixture_dir();
+  for (const char* t : {"1", "2"}) {
+    const CmdResult r = ncpath(args(dir, std::string("t") + t + ".h5") +
+                               " --tool flat:4 --stepover 1.5 --depth 3 --threads " + t);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  h5::Id a = h5::open_read(dir / "t1.h5");
+  h5::Id b = h5::open_read(dir / "t2.h5");
+  EXPECT_EQ(h5::read_all<double>(a, "/jobs/pocket/cl/points", H5T_NATIVE_DOUBLE),
+            h5::read_all<double>(b, "/jobs/pocket/cl/points", H5T_NATIVE_DOUBLE));
+  EXPECT_EQ(h5::read_all<std::int64_t>(a, "/jobs/pocket/cl/path_offsets", H5T_NATIVE_INT64),
+            h5::read_all<std::int64_t>(b, "/jobs/pocket/cl/path_offsets", H5T_NATIVE_INT64));
+  EXPECT_EQ(h5::read_all<std::uint8_t>(a, "/jobs/pocket/cl/path_kind", H5T_NATIVE_UINT8),
+            h5::read_all<std::uint8_t>(b, "/jobs/pocket/cl/path_kind", H5T_NATIVE_UINT8));
+}
+
+// Exit code 1, status invalid_parameter in the file, and `expected` in the printed message.
+void expect_invalid_parameter(const std::filesystem::path& dir, const std::string& command,
+                              const std::string& expected) {
+  const std::string out = (dir / "bad.h5").string();
+  const CmdResult r = ncpath(command + " --quiet --out " + out);
+  EXPECT_EQ(r.exit_code, 1) << command << "\n" << r.output;
+  EXPECT_NE(r.output.find("invalid_parameter"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(expected), std::string::npos) << expected << " in: " << r.output;
+  h5::Id f = h5::open_read(out);
+  h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter");
+  EXPECT_NE(h5::attr_str(job, "message").find(expected), std::string::npos);
+}
+
+TEST(PocketCli, BadParametersAreRejectedWithTheKey) {
+  const auto dir = fixture_dir();
+  const std::string plate = "pocket --profile " + (dir / "plate.toml").string();
+  expect_invalid_parameter(dir, plate + " --tool flat:6 --depth 2 --stepover 0",
+                           "stepover must be a positive number");
+  expect_invalid_parameter(dir, plate + " --tool flat:6 --depth 2 --stepover 6.5",
+                           "larger than the tool diameter 6 mm");
+  expect_invalid_parameter(dir, plate + " --tool flat:6 --depth 2 --stepover 101%",
+                           "larger than the tool diameter");
+  expect_invalid_parameter(dir, plate + " --tool flat:6 --depth -1", "depth must be a positive");
+  expect_invalid_parameter(dir, plate + " --tool flat:6 --depth 2 --ramp-angle 90",
+                           "ramp_angle must be in (0, 90)");
+  expect_invalid_parameter(dir, plate + " --tool flat:6 --depth 2 --safe-z 0.5",
+                           "below the clearance height 1 mm");
+  // CLI11 rejects what it can see: a missing depth, an unknown order.
+  CmdResult r = ncpath(plate + " --quiet --out " + (dir / "x.h5").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--depth"), std::string::npos) << r.output;
+  r = ncpath(plate + " --depth 2 --order sideways --quiet --out " + (dir / "x.h5").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("sideways"), std::string::npos) << r.output;
+}
+
+TEST(PocketCli, ATooBigToolNamesTheBoundarysEntity) {
+  const auto dir = fixture_dir();
+  // A DXF circle of radius 5 (handle 2F) and a 20 mm cutter.
+  const std::string dxf = test::dxf_entities(test::pairs(
+      {"0", "CIRCLE", "5", "2F", "8", "0", "10", "0", "20", "0", "30", "0", "40", "5"}));
+  std::ofstream(dir / "hole.dxf", std::ios::binary) << dxf;
+  expect_invalid_parameter(
+      dir, "pocket --profile " + (dir / "hole.dxf").string() + " --tool flat:20 --depth 2",
+      "does not fit");
+  const CmdResult r = ncpath("pocket --profile " + (dir / "hole.dxf").string() +
+                             " --tool flat:20 --depth 2 --quiet --out " + (dir / "x.h5").string());
+  EXPECT_NE(r.output.find("CIRCLE 2F"), std::string::npos) << r.output;
+}
+
+TEST(PocketCli, BatchJobsReportUnknownKeysAndRunTheOthers) {
+  const auto dir = fixture_dir();
+  std::ofstream(dir / "jobs.toml") << R"(
+output = "out.h5"
+[[job]]
+name = "good"
+operation = "pocket"
+input = "plate.toml"
+tool = "flat:6"
+params = { depth = 3, stepdown = 1.5, order = "inward", milling = "conventional", clearance = 2 }
+gcode = { path = "good.ngc", dialect = "grbl", safe_z = 10 }
+[[job]]
+name = "typo"
+operation = "pocket"
+input = "plate.toml"
+tool = "flat:6"
+params = { depth = 3, stepovr = 2 }
+)";
+  const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("2 job(s), 1 ok, 1 failed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'params.stepovr' is not a known key"), std::string::npos) << r.output;
+  h5::Id f = h5::open_read(dir / "out.h5");
+  h5::Id good(H5Gopen2(f, "/jobs/good", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(good, "status"), "ok");
+  EXPECT_NE(h5::attr_str(good, "params").find("\"stepover\":3.0"), std::string::npos);  // 50%
+  EXPECT_EQ(stat(f, "good", "depth_passes"), 2);
+  // Rapids (if any) at the G-code's safe height; the program starts there.
+  const auto pts = h5::read_all<double>(f, "/jobs/good/cl/points", H5T_NATIVE_DOUBLE);
+  for (std::size_t i = 2; i < pts.size(); i += 3) EXPECT_LE(pts[i], 10 + 1e-9);
+  EXPECT_NE(slurp(dir / "good.ngc").find("G0 Z10.0000"), std::string::npos);
+  h5::Id typo(H5Gopen2(f, "/jobs/typo", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(typo, "status"), "invalid_parameter");
+  EXPECT_NE(h5::attr_str(typo, "message").find("params.stepovr"), std::string::npos);
+}
+
+TEST(PocketCli, HelpDocumentsEveryOption) {
+  const CmdResult r = ncpath("pocket --help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* s :
+       {"--profile", "--tool",    "--stepover",     "--depth",      "--stepdown",
+        "--out",     "--gcode",   "--stock",        "--tolerance",  "--join-tolerance",
+        "--order",   "--milling", "--helix-radius", "--ramp-angle", "--clearance",
+        "--safe-z",  "--threads", "--dialect",      "--feed",       "--plunge-feed",
+        "--spindle", "--name",    "--quiet"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << s;
+  EXPECT_NE(ncpath("--help").output.find("pocket"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ncpath
