@@ -15,12 +15,6 @@
 namespace ncpath {
 namespace {
 
-Profile profile_of(const std::vector<Seg2>& loop) {
-  Profile p;
-  for (const Seg2& s : loop) p.curves.push_back({s, -1});
-  return p;
-}
-
 void full_pocket(benchmark::State& state, bool islands, bool gcode, double stepover) {
   std::vector<Region> regions(1);
   regions[0].boundary = profile_of(bench::wave_loop(10000, 8.85));

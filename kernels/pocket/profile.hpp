@@ -35,6 +35,13 @@ struct Profile {
   std::vector<Nurbs2> nurbs;
 };
 
+// A profile of lines and arcs only (a closed chain as above).
+inline Profile profile_of(const std::vector<Seg2>& segs) {
+  Profile p;
+  for (const Seg2& s : segs) p.curves.push_back({s, -1});
+  return p;
+}
+
 // One pocket: its boundary (clockwise) and the islands inside it (counter-clockwise).
 struct Region {
   Profile boundary;

@@ -47,54 +47,50 @@ SegGrid::SegGrid(const std::vector<Seg2>& segs, double min_cell) : segs_(&segs) 
   stamp_.assign(segs.size(), 0);
 }
 
+template <class Visit>
+void SegGrid::visit(const Vec2& lo, const Vec2& hi, Visit&& visit) {
+  int x0, y0, x1, y1;
+  range(lo, hi, x0, y0, x1, y1);
+  ++tick_;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+      for (std::uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
+        const std::uint32_t id = ids_[k];
+        if (stamp_[id] == tick_) continue;
+        stamp_[id] = tick_;
+        const Box& b = boxes_[id];
+        if (b.lo.x() > hi.x() || b.hi.x() < lo.x() || b.lo.y() > hi.y() || b.hi.y() < lo.y())
+          continue;
+        if (!visit(id)) return;
+      }
+    }
+}
+
 bool SegGrid::any_closer(const Seg2& s, double limit) {
   Vec2 lo, hi;
   loose_bounds(s, lo, hi);
   lo.array() -= limit;
   hi.array() += limit;
-  int x0, y0, x1, y1;
-  range(lo, hi, x0, y0, x1, y1);
-  ++tick_;
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) {
-      const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
-      for (std::uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
-        const std::uint32_t id = ids_[k];
-        if (stamp_[id] == tick_) continue;
-        stamp_[id] = tick_;
-        const Box& b = boxes_[id];
-        if (b.lo.x() > hi.x() || b.hi.x() < lo.x() || b.lo.y() > hi.y() || b.hi.y() < lo.y())
-          continue;
-        if (distance(s, (*segs_)[id]) < limit) return true;
-      }
-    }
-  return false;
+  bool found = false;
+  visit(lo, hi, [&](std::uint32_t id) {
+    found = distance(s, (*segs_)[id]) < limit;
+    return !found;
+  });
+  return found;
 }
 
 bool SegGrid::nearest_within(const Vec2& p, double limit, std::uint32_t& seg, double& dist) {
-  const Vec2 lo = p.array() - limit, hi = p.array() + limit;
-  int x0, y0, x1, y1;
-  range(lo, hi, x0, y0, x1, y1);
-  ++tick_;
   bool found = false;
-  for (int y = y0; y <= y1; ++y)
-    for (int x = x0; x <= x1; ++x) {
-      const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
-      for (std::uint32_t k = start_[c]; k < start_[c + 1]; ++k) {
-        const std::uint32_t id = ids_[k];
-        if (stamp_[id] == tick_) continue;
-        stamp_[id] = tick_;
-        const Box& b = boxes_[id];
-        if (b.lo.x() > hi.x() || b.hi.x() < lo.x() || b.lo.y() > hi.y() || b.hi.y() < lo.y())
-          continue;
-        const double d = distance((*segs_)[id], p);
-        if (d < limit && (!found || d < dist || (d == dist && id < seg))) {
-          found = true;
-          seg = id;
-          dist = d;
-        }
-      }
+  visit(p.array() - limit, p.array() + limit, [&](std::uint32_t id) {
+    const double d = distance((*segs_)[id], p);
+    if (d < limit && (!found || d < dist || (d == dist && id < seg))) {
+      found = true;
+      seg = id;
+      dist = d;
     }
+    return true;
+  });
   return found;
 }
 

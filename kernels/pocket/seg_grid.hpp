@@ -27,6 +27,9 @@ class SegGrid {
 
  private:
   void range(const Vec2& lo, const Vec2& hi, int& x0, int& y0, int& x1, int& y1) const;
+  // Calls visit(id) once for each segment whose box meets [lo, hi] until it returns false.
+  template <class Visit>
+  void visit(const Vec2& lo, const Vec2& hi, Visit&& visit);
   const std::vector<Seg2>* segs_;
   std::vector<Box> boxes_;
   Vec2 lo_;

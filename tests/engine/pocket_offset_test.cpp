@@ -14,12 +14,6 @@
 namespace ncpath {
 namespace {
 
-Profile profile_of(const std::vector<Seg2>& segs) {
-  Profile p;
-  for (const Seg2& s : segs) p.curves.push_back({s, -1});
-  return p;
-}
-
 TEST(PocketOffset, RectangleLevelsAndAreas) {
   Region r;
   r.boundary = profile_of(test::rectangle(0, 0, 100, 60, true));

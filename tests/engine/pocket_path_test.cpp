@@ -35,12 +35,6 @@ constexpr double kLengthRel = 1e-3;   // stats lengths vs polyline lengths (chor
 
 // --- Input shapes --------------------------------------------------------------------------------
 
-Profile profile_of(const std::vector<Seg2>& segs) {
-  Profile p;
-  for (const Seg2& s : segs) p.curves.push_back({s, -1});
-  return p;
-}
-
 // Closed polygon of lines, oriented clockwise (cw = true) or counter-clockwise.
 std::vector<Seg2> polygon(std::vector<Vec2> pts, bool cw) {
   double a2 = 0;
