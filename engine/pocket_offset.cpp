@@ -47,7 +47,8 @@ void first_offsets(const Profile& profile, double d, double tolerance, OffsetRun
   }
 }
 
-PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const PocketOffsetParams& p) {
+PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const PocketOffsetParams& p,
+                                 const StepFn* step) {
   std::vector<OffsetLevels> per_region(regions.size());
   const ForEach parallel = [](std::size_t n, const std::function<void(std::size_t)>& task) {
     par::for_each(n, 1, task);
@@ -70,9 +71,10 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const Pocke
     bool nurbs = false;
     for (const Profile* pr : profiles) nurbs = nurbs || !pr->nurbs.empty();
     const double slack = nurbs ? 2 * p.tolerance : 0;
-    per_region[r] =
-        offset_levels_from(offset_prepared(std::move(runs), shapes, first, nullptr, slack),
-                           p.stepover, p.max_levels, parallel);
+    OffsetResult level1 = offset_prepared(std::move(runs), shapes, first, nullptr, slack);
+    per_region[r] = step
+                        ? offset_levels_from(std::move(level1), *step, p.max_levels, parallel)
+                        : offset_levels_from(std::move(level1), p.stepover, p.max_levels, parallel);
   });
   PocketOffsetResult out;
   for (std::size_t r = 0; r < regions.size(); ++r) {
@@ -81,7 +83,7 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const Pocke
     for (LevelLoop& l : per_region[r].loops) {
       for (std::uint32_t& parent : l.loop.parents) parent += base;
       out.levels = std::max(out.levels, l.level);
-      out.loops.push_back({std::move(l.loop), static_cast<std::uint32_t>(r), l.level});
+      out.loops.push_back({std::move(l.loop), static_cast<std::uint32_t>(r), l.level, l.step});
     }
   }
   return out;

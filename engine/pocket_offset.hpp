@@ -29,6 +29,7 @@ struct PocketLoop {
   OffsetLoop loop;           // loop.parents: indices into PocketOffsetResult::loops
   std::uint32_t region = 0;  // input region
   std::uint32_t level = 0;   // 1 = at tool radius + stock
+  double step = 0;           // distance from its parents' level (0 at level 1), mm
 };
 
 struct PocketOffsetResult {
@@ -44,7 +45,9 @@ std::vector<Seg2> profile_segments(const Profile& profile, double tolerance);
 // Tiller-Hanson (kernels/curves/nurbs.hpp) within `tolerance`, then as arcs within it.
 void first_offsets(const Profile& profile, double d, double tolerance, OffsetRuns& runs);
 
+// step: when given, the distance from each level region to the next (e.g. from a scallop
+// height); params.stepover is then unused. Called from parallel tasks: thread-safe.
 PocketOffsetResult offset_pocket(const std::vector<Region>& regions,
-                                 const PocketOffsetParams& params);
+                                 const PocketOffsetParams& params, const StepFn* step = nullptr);
 
 }  // namespace ncpath

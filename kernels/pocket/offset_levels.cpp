@@ -60,6 +60,13 @@ OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double f
 
 OffsetLevels offset_levels_from(OffsetResult r, double step, std::uint32_t max_levels,
                                 const ForEach& for_each) {
+  return offset_levels_from(
+      std::move(r), [step](std::uint32_t, const std::vector<const OffsetLoop*>&) { return step; },
+      max_levels, for_each);
+}
+
+OffsetLevels offset_levels_from(OffsetResult r, const StepFn& step, std::uint32_t max_levels,
+                                const ForEach& for_each) {
   OffsetLevels out;
   out.open_fragments += r.stats.open_fragments;
   std::uint32_t level = 1;
@@ -79,21 +86,25 @@ OffsetLevels offset_levels_from(OffsetResult r, double step, std::uint32_t max_l
     const std::vector<std::vector<std::uint32_t>> regions =
         group_regions_of(prev_end - prev_start, prev);
     std::vector<OffsetResult> slots(regions.size());
+    std::vector<double> steps(regions.size());
     for_each(regions.size(), [&](std::size_t r) {
       std::vector<std::vector<Seg2>> loops;
       std::vector<double> area2;
+      std::vector<const OffsetLoop*> region;
       for (std::uint32_t k : regions[r]) {
         loops.push_back(prev(k).segs);
         area2.push_back(prev(k).area2);
+        region.push_back(&prev(k));
       }
-      slots[r] = offset_loops(loops, step, &area2);
+      steps[r] = step(level - 1, region);
+      slots[r] = offset_loops(loops, steps[r], &area2);
     });
     for (std::size_t r = 0; r < regions.size(); ++r) {
       out.open_fragments += slots[r].stats.open_fragments;
       for (OffsetLoop& l : slots[r].loops) {
         for (std::uint32_t& p : l.parents)
           p = static_cast<std::uint32_t>(prev_start + regions[r][p]);
-        out.loops.push_back({std::move(l), level});
+        out.loops.push_back({std::move(l), level, steps[r]});
       }
     }
     prev_start = prev_end;

@@ -27,6 +27,7 @@ std::vector<std::vector<std::uint32_t>> group_regions(const std::vector<const Of
 struct LevelLoop {
   OffsetLoop loop;          // loop.parents: indices into OffsetLevels::loops of the level above
   std::uint32_t level = 0;  // 1 = first offset of the input
+  double step = 0;          // distance from the level above (0 for level 1), mm
 };
 
 struct OffsetLevels {
@@ -48,6 +49,14 @@ OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double f
                            const ForEach& for_each = sequential_for_each);
 // The same from a given first level (e.g. offset_prepared with Tiller-Hanson offsets).
 OffsetLevels offset_levels_from(OffsetResult first_level, double step,
+                                std::uint32_t max_levels = 1000000,
+                                const ForEach& for_each = sequential_for_each);
+// The same with a step chosen per level region: step(level, loops) gives the distance from
+// the region of `level` (its clockwise loop and holes) to the next level (e.g. from the
+// scallop height along those loops). Called from the for_each tasks: must be thread-safe.
+using StepFn =
+    std::function<double(std::uint32_t level, const std::vector<const OffsetLoop*>& region)>;
+OffsetLevels offset_levels_from(OffsetResult first_level, const StepFn& step,
                                 std::uint32_t max_levels = 1000000,
                                 const ForEach& for_each = sequential_for_each);
 

@@ -327,7 +327,6 @@ class PartPlanner {
     SegGrid grid(segs(root), prm_.stepover);
     grid.nearest_within(start, std::numeric_limits<double>::infinity(), seg, d);
     entry_[root] = pos_on(segs(root), seg, start);
-    const double reach = prm_.stepover + tol::kLinkSlack;
     for (std::uint32_t x : bfs_) {
       // The one-way child: the largest subtree (fewest links travelled twice).
       for (std::uint32_t c : children_[x])
@@ -341,6 +340,10 @@ class PartPlanner {
           entry_[c] = locate(c, x_is_a ? e.pb : e.pa);
           continue;
         }
+        // Links span one level step: the inner loop's distance from its parents.
+        const std::uint32_t deeper = loops_[x].level > loops_[c].level ? x : c;
+        const double step = loops_[deeper].step > 0 ? loops_[deeper].step : prm_.stepover;
+        const double reach = step + tol::kLinkSlack;
         Pos q;
         if (grids_.near(c, entry_[x].p, reach, q)) {
           link_from_[c] = entry_[x];

@@ -36,6 +36,7 @@ struct PlanLoop {
   std::uint32_t level = 0;                  // 1 = first offset
   std::vector<std::uint32_t> parents;       // OGH: indices of loops of level - 1
   std::uint32_t group = 0;  // loops of one level region (a clockwise loop and its holes)
+  double step = 0;          // distance from its parents' level, mm (0: PlanParams::stepover)
 };
 
 struct CleanupLoop {
