@@ -138,9 +138,59 @@ inline constexpr double kLinkSlack = 2e-5;
 // two corner regions where a band is exactly twice the tool radius wide), not material.
 inline constexpr double kUncutArea = 1e-9;
 
+// mm. Uncut regions (kernels/pocket/uncut.cpp) dissect only the stretches of the band's
+// crude offset loops that are not certified to lie closer than R - kOffsetValid - this to the
+// other level everywhere; the margin covers the offset pieces being cut from their crude
+// segments at computed crossings (off the segment by up to ~1e-7 mm where curves cross at
+// a glancing angle), so that no piece of a certified segment can pass validation.
+inline constexpr double kUncutCertify = 1e-6;
+
 // Sine of the angle below which two curves meeting at a point are taken to touch rather
 // than cross (offset dissection): near-tangent crossings are ill-conditioned, and a contact
 // that close to tangent moves by at most ~1e-6 mm over the 1 mm around it.
 inline constexpr double kTangentCross = 1e-6;
+
+// ---- NURBS surfaces (kernels/surface/*.cpp) ----
+
+// Dimensionless. The height-field check (check_height_field) counts a surface point whose unit
+// normal has |n_z| at most this as a vertical tangent plane: the bottom is not single-valued
+// over the plan there (or its parameterisation collapses).
+inline constexpr double kHeightFieldNz = 1e-9;
+
+// Dimensionless, relative to the surface's plan size (diagonal of its control-point box in
+// xy). Chordal tolerance of the border polygon on which check_height_field tests that the
+// surface's plan outline does not overlap itself; border stretches closer than this may be
+// reported as touching.
+inline constexpr double kHeightFieldOutline = 1e-7;
+
+// Dimensionless. A first partial derivative of a surface shorter than this times the other one
+// is zero (a pole, where a whole edge of the parameter domain meets in one point): the normal
+// there is the limit taken from the mixed second derivative.
+inline constexpr double kSurfaceZeroSpeed = 1e-10;
+
+// mm. Ball drop on a NURBS surface (kernels/surface/surface_drop*): a full Newton step on the
+// contact shorter than this ends the search; the error left is of order its square over the
+// curvature radius (~1e-12 mm in position, far less in height).
+inline constexpr double kDropNewtonQuadratic = 1e-6;
+
+// mm. Ball drop: a Newton iterate this close to a maximum already found in the same patch is
+// converging to it and is stopped. Two distinct maxima this close would differ in height by
+// the order of kDropSameMaximum^2 times f's curvature (~1 / R): 1e-10 mm at R = 1 mm.
+inline constexpr double kDropSameMaximum = 1e-5;
+
+// Dimensionless, relative to |f| + 1 (f: ball centre height, mm). Near the maximum a full
+// Newton step changes the centre height by less than its rounding; such a step is still taken
+// if it lowers the height by at most this, so that the contact position converges too.
+inline constexpr double kDropFlatSlack = 1e-14;
+
+// Dimensionless (local Bezier patch parameter in [0, 1]). A Newton iterate this close to a
+// side of the patch's parameter square is on it (and is fixed there when the gradient points
+// out of the square).
+inline constexpr double kDropBoundSnap = 1e-9;
+
+// Dimensionless, relative to a sub-patch's parameter size. A maximum found within this of a
+// concave leaf sub-patch's parameter rectangle counts as inside it (rounding of the halved
+// parameters).
+inline constexpr double kDropInLeaf = 1e-9;
 
 }  // namespace ncpath::tol

@@ -40,32 +40,32 @@ bool extended_crossing(const Seg2& s0, const Seg2& s1, const Vec2& v, Vec2& out)
 }
 
 // Joins `prev` (its end) to `next` (its start) around the original vertex v; may trim
-// both, and may append a joining segment to out.
-void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
+// both. True when a joining segment is needed: it is written to out.
+bool join(Seg2& prev, Seg2& next, const Vec2& v, Seg2& out) {
   // Ends that (nearly) meet are made to meet: a joining piece shorter than kOffsetJoint
   // would only be a rounding artefact, and would turn back on itself one level later.
   const double eps = tol::kOffsetPoint;
   if ((prev.b - next.a).norm() <= tol::kOffsetJoint) {
     move_end(next, prev.b, false);
-    return;
+    return false;
   }
   const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
   const double c = cross(te, ts);
   if (c > 0 || (std::abs(c) <= 1e-15 && te.dot(ts) < 0)) {
     // Left turn: the material side opens; the true offset is the arc around v.
-    out.push_back(make_arc(prev.b, next.a, v, true, prev.source));
-    out.back().r = (prev.b - v).norm();
-    return;
+    out = make_arc(prev.b, next.a, v, true, prev.source);
+    out.r = (prev.b - v).norm();
+    return true;
   }
   // Right turn: the offsets overlap; trim both at their intersection nearest to v.
   SegHit hits[2];
-  const int n = intersect(prev, next, hits, eps);
+  const int n = intersect(prev, next, hits, eps, false);
   if (n > 0) {
     int best = 0;
     if (n == 2 && (hits[1].p - v).norm() < (hits[0].p - v).norm()) best = 1;
     move_end(prev, hits[best].p, true);
     move_end(next, hits[best].p, false);
-    return;
+    return false;
   }
   // Nearly parallel ends (a corner of a few micro-radians) cross just past an end, where
   // the bounded intersection test cannot see it: meet at the crossing of the extended
@@ -76,9 +76,10 @@ void join(Seg2& prev, Seg2& next, const Vec2& v, std::vector<Seg2>& out) {
       (p - prev.b).norm() <= 2 * gap + tol::kOffsetJoint) {
     move_end(prev, p, true);
     move_end(next, p, false);
-    return;
+    return false;
   }
-  out.push_back(make_line(prev.b, next.a, prev.source));
+  out = make_line(prev.b, next.a, prev.source);
+  return true;
 }
 
 // At a right turn whose end segments do not meet (runs of many short arcs, e.g. a NURBS
@@ -115,7 +116,7 @@ bool trim_overlap(std::vector<Seg2>& segs, std::uint32_t prev_begin, std::uint32
           hi[q].y() < ilo.y())
         continue;
       SegHit hits[2];
-      const int n = intersect(segs[i], segs[j], hits, tol::kOffsetPoint);
+      const int n = intersect(segs[i], segs[j], hits, tol::kOffsetPoint, false);
       for (int k = 0; k < n; ++k) {
         const double dv = (hits[k].p - v).norm();
         if (dv < best) {
@@ -137,6 +138,8 @@ bool trim_overlap(std::vector<Seg2>& segs, std::uint32_t prev_begin, std::uint32
 
 }  // namespace
 
+constexpr std::uint32_t kNoJoin = 0xffffffffu;
+
 // The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
 // raw. d: the offset distance (bounds the search for overlaps at concave joints).
 void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<RawSeg>& raw) {
@@ -145,14 +148,19 @@ void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<R
   // Effective ranges of the runs: joins may trim whole segments off their ends.
   std::vector<std::uint32_t> first(runs.start.begin(), runs.start.end() - 1),
       last(runs.start.begin() + 1, runs.start.end());
-  std::vector<std::vector<Seg2>> joins(n);
+  // The joining segment after each run (at most one: an arc or a connector line).
+  std::vector<Seg2> joins;
+  std::vector<std::uint32_t> join_of(n, kNoJoin);  // index into joins, per run
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t k1 = (k + 1) % n;
     Seg2& prev = runs.segs[last[k] - 1];
     Seg2& next = runs.segs[first[k1]];
-    join(prev, next, runs.vertex[k1], joins[k]);
+    Seg2 js;
+    if (!join(prev, next, runs.vertex[k1], js)) continue;
+    join_of[k] = static_cast<std::uint32_t>(joins.size());
+    joins.push_back(js);
     // A connector line at a right turn means the ends missed each other: look further back.
-    const bool missed = joins[k].size() == 1 && !joins[k][0].is_arc();
+    const bool missed = !js.is_arc();
     if (!missed) continue;
     const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
     if (cross(te, ts) > 0) continue;
@@ -165,20 +173,26 @@ void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<R
     if (trim_overlap(runs.segs, prev_begin, l, f, next_end, runs.vertex[k1], 20 * d)) {
       last[k] = l;
       first[k1] = f;
-      joins[k].clear();
+      join_of[k] = kNoJoin;
     }
   }
   const auto base = static_cast<std::uint32_t>(raw.size());
   for (std::size_t k = 0; k < n; ++k) {
     for (std::uint32_t q = first[k]; q < last[k]; ++q)
       raw.push_back({runs.segs[q], loop_id, 0, 0, false});
-    for (const Seg2& js : joins[k]) raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
+    if (join_of[k] != kNoJoin) {
+      const Seg2& js = joins[join_of[k]];
+      raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
+    }
   }
   const auto m = static_cast<std::uint32_t>(raw.size() - base);
+  if (m == 0) return;
   for (std::uint32_t k = 0; k < m; ++k) {
-    raw[base + k].prev = base + (k + m - 1) % m;
-    raw[base + k].next = base + (k + 1) % m;
+    raw[base + k].prev = base + k - 1;
+    raw[base + k].next = base + k + 1;
   }
+  raw[base].prev = base + m - 1;
+  raw[base + m - 1].next = base;
 }
 
 }  // namespace ncpath::pocket_detail

@@ -1,7 +1,10 @@
 #pragma once
 // Internals of offset-loop dissection (kernels/pocket/offset.cpp): the crude offset loop,
-// joins at corners. Not a public API.
+// joins at corners (offset_crude.cpp), the dissection of crude loops or of stretches of
+// them (offset_dissect.cpp), and the certification that decides which stretches an uncut
+// region can touch (uncut_certify.cpp). Not a public API.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "kernels/pocket/offset.hpp"
@@ -10,15 +13,55 @@ namespace ncpath::pocket_detail {
 
 struct RawSeg {
   Seg2 s;
-  std::uint32_t loop;        // input loop it was offset from
+  std::uint32_t loop;        // input loop it was offset from (in dissect: its chain)
   std::uint32_t prev, next;  // neighbours in the crude loop (indices into the raw list)
   bool connector;            // a line joining offsets that miss each other: not itself an offset
 };
+
+// RawSeg::prev / next at the ends of an open chain.
+inline constexpr std::uint32_t kNoRaw = 0xffffffffu;
 
 // The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
 // raw; joins may trim the runs in place. At a concave corner whose end segments miss each
 // other (runs of many short arcs overlap over several segments) the runs are cut back to
 // their crossing nearest the vertex, searched within 20 d of curve.
 void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<RawSeg>& raw);
+
+// A chain of raw segments for dissect: a whole crude loop (closed), or a stretch of one
+// (open; a windowed dissection, kernels/pocket/uncut.cpp) whose end segments hold no point
+// of the result. Its segments are contiguous in the raw list, RawSeg::loop is its index.
+struct Chain {
+  std::uint32_t input = 0;  // input loop it was offset from (result loops' parents)
+  bool closed = true;
+  bool inverted = false;   // the input loop's offset has an inside-out arc (OffsetRuns)
+  double input_area2 = 0;  // loop_area2 of the input loop (used for closed chains)
+};
+
+struct DissectParams {
+  bool several_inputs = false;  // more than one input loop (a crude loop crossing nothing may
+                                // lie within d of another)
+  bool pocket = false;          // largest input loop clockwise: holes outside every boundary go
+};
+
+// True when no input curve comes closer to the piece than the offset distance (less slack);
+// the piece is cut from raw[raw_index].
+using PieceValid = std::function<bool(const Seg2& piece, std::uint32_t raw_index)>;
+
+// Steps 3 to 6 of offset_loops on the chains' raw segments. rank (optional): each raw
+// segment's index in the complete crude loops; sweep ties and the order loops are started
+// in follow it, so that a dissection of stretches lists the complete one's loops in the same
+// order, each from the same piece.
+OffsetResult dissect(const std::vector<RawSeg>& raw, const std::vector<Chain>& chains,
+                     const std::vector<std::uint32_t>* rank, const DissectParams& params,
+                     const PieceValid& valid);
+
+class SegGrid;
+
+// Certifies the segments raw[begin, end) (one crude loop, in order) as lying closer than
+// `limit` to the curves of `level` everywhere (uncut_certify.cpp: exact bounds, bisecting
+// where they are not tight enough). Marks the others in bad, or with bad null stops at the
+// first; true when there is one.
+bool uncertified(const std::vector<RawSeg>& raw, std::size_t begin, std::size_t end, SegGrid& level,
+                 double limit, std::vector<std::uint8_t>* bad);
 
 }  // namespace ncpath::pocket_detail

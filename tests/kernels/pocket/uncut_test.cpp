@@ -5,10 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <clipper.hpp>
 #include <cmath>
+#include <numbers>
 #include <random>
 
+#include "bench/wave_shapes.hpp"
 #include "kernels/pocket/offset_levels.hpp"
 #include "tests/support/shapes2d.hpp"
 
@@ -79,9 +82,7 @@ void check_levels(const std::vector<std::vector<Seg2>>& pocket, double r, double
     const std::vector<OffsetLoop> u = uncut_between({&outer}, {&inner}, r);
     bands_with_uncut += !u.empty();
     // The quick test may only say "cut" when there is nothing.
-    if (band_cut({&outer}, {&inner}, r)) {
-      EXPECT_TRUE(u.empty()) << "band " << k;
-    }
+    if (band_cut({&outer}, {&inner}, r)) EXPECT_TRUE(u.empty()) << "band " << k;
     const double oracle = clipper_uncut_area(outer.segs, inner.segs, r);
     const double perimeter = loop_length(outer.segs) + loop_length(inner.segs);
     EXPECT_NEAR(ours(u), oracle, 6 * kChord * perimeter + 1e-6) << "band " << k;
@@ -148,9 +149,7 @@ TEST(Uncut, QuickBandTestIsSound) {
       const bool empty = uncut_between(outer, inner, 3).empty();
       said_cut += quick;
       found_uncut += !empty;
-      if (quick) {
-        EXPECT_TRUE(empty) << "trial " << trial << " band " << k;
-      }
+      if (quick) EXPECT_TRUE(empty) << "trial " << trial << " band " << k;
     }
   }
   EXPECT_GT(said_cut, 0);
@@ -171,6 +170,93 @@ TEST(Uncut, UnreachableCorners) {
   const Reach with_island =
       tool_reach({test::rectangle(0, 0, 100, 60, true), test::rectangle(40, 20, 60, 40, false)}, r);
   EXPECT_NEAR(with_island.unreachable_area, 4 * r * r * (1 - pi / 4), 1e-9);
+}
+
+// The windowed dissection (uncut_between) against the complete one (uncut_between_full)
+// over every band of multi-level offsets, as plan_pocket forms them (a level region and the
+// next level's loops inside it, the centre band for regions with no next level): the same
+// regions, in the same order, with the same areas, parents and segments. band_cut may only
+// say "cut" when the complete dissection finds nothing. Returns the number of regions.
+int expect_windowed_matches_full(const std::vector<std::vector<Seg2>>& pocket, double r,
+                                 double step, std::uint32_t max_levels, int* bands_said_cut) {
+  const OffsetLevels lv = offset_levels(pocket, r, step, max_levels);
+  int regions = 0;
+  for (std::size_t k = 0; k < lv.level_start.size(); ++k) {
+    const std::size_t b = k == 0 ? 0 : lv.level_start[k - 1], e = lv.level_start[k];
+    std::vector<const OffsetLoop*> level;
+    for (std::size_t i = b; i < e; ++i) level.push_back(&lv.loops[i].loop);
+    for (const std::vector<std::uint32_t>& members : group_regions(level)) {
+      std::vector<const OffsetLoop*> outer, inner;
+      for (const std::uint32_t m : members) outer.push_back(level[m]);
+      if (k + 1 < lv.level_start.size())
+        for (std::size_t i = e; i < lv.level_start[k + 1]; ++i) {
+          const std::vector<std::uint32_t>& par = lv.loops[i].loop.parents;
+          if (!par.empty() &&
+              std::find(members.begin(), members.end(), par[0] - b) != members.end())
+            inner.push_back(&lv.loops[i].loop);
+        }
+      const std::vector<OffsetLoop> fast = uncut_between(outer, inner, r);
+      const std::vector<OffsetLoop> full = uncut_between_full(outer, inner, r);
+      const bool cut = band_cut(outer, inner, r);
+      *bands_said_cut += cut;
+      if (cut) EXPECT_TRUE(full.empty()) << "level " << k;
+      EXPECT_EQ(fast.size(), full.size()) << "level " << k;
+      if (fast.size() != full.size()) continue;
+      for (std::size_t i = 0; i < fast.size(); ++i) {
+        EXPECT_NEAR(fast[i].area2 / 2, full[i].area2 / 2, 1e-9) << "level " << k << " region " << i;
+        EXPECT_EQ(fast[i].parents, full[i].parents) << "level " << k << " region " << i;
+        // The same loop from the same piece: the windows hold every piece the complete
+        // dissection keeps, cut at the same crossings.
+        EXPECT_EQ(fast[i].segs.size(), full[i].segs.size()) << "level " << k << " region " << i;
+        if (fast[i].segs.size() != full[i].segs.size()) continue;
+        for (std::size_t q = 0; q < fast[i].segs.size(); ++q) {
+          EXPECT_EQ(fast[i].segs[q].kind, full[i].segs[q].kind);
+          EXPECT_LE((fast[i].segs[q].a - full[i].segs[q].a).norm(), 1e-12);
+        }
+      }
+      regions += static_cast<int>(full.size());
+    }
+  }
+  return regions;
+}
+
+// Random star polygons of lines and bulge arcs, some with islands, at stepovers between R
+// and 2R.
+TEST(Uncut, WindowedMatchesFullOnRandomStars) {
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> rad(25, 40), bulge(-0.25, 0.25), u(0, 1);
+  const double r = 1.5;
+  int regions = 0, said_cut = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const int n = 24 + 6 * trial;
+    std::vector<Vec2> pts;
+    for (int k = 0; k < n; ++k) {
+      const double a = -2 * std::numbers::pi * (k + 0.3 * u(rng)) / n;  // clockwise
+      const double rr = rad(rng);
+      pts.emplace_back(rr * std::cos(a), rr * std::sin(a));
+    }
+    std::vector<std::vector<Seg2>> pocket(1);
+    for (int k = 0; k < n; ++k)
+      pocket[0].push_back(u(rng) < 0.5 ? make_line(pts[k], pts[(k + 1) % n])
+                                       : make_bulge_segment(pts[k], pts[(k + 1) % n], bulge(rng)));
+    if (trial % 2 == 1) {
+      pocket.push_back(test::circle({-6 + 3 * u(rng), 3 * u(rng)}, 3, false));
+      pocket.push_back(test::rectangle(6, -4, 10 + 3 * u(rng), 2, false));
+    }
+    for (const double f : {1.2, 1.6, 2.0})
+      regions += expect_windowed_matches_full(pocket, r, f * r, 1000, &said_cut);
+  }
+  EXPECT_GT(regions, 100);
+  EXPECT_GT(said_cut, 0);
+}
+
+// The benchmark's wavy loop with its 12 islands, reduced to 2,000 segments, at the
+// benchmark's tool and stepover (the first 9 levels: the islands and the bands they split).
+TEST(Uncut, WindowedMatchesFullOnWaveWithIslands) {
+  std::vector<std::vector<Seg2>> pocket = {bench::wave_loop(2000, 8.85)};
+  for (const std::vector<Seg2>& island : bench::twelve_islands()) pocket.push_back(island);
+  int said_cut = 0;
+  EXPECT_GT(expect_windowed_matches_full(pocket, 0.5, 0.9, 9, &said_cut), 50);
 }
 
 }  // namespace
