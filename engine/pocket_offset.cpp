@@ -72,9 +72,10 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const Pocke
     for (const Profile* pr : profiles) nurbs = nurbs || !pr->nurbs.empty();
     const double slack = nurbs ? 2 * p.tolerance : 0;
     OffsetResult level1 = offset_prepared(std::move(runs), shapes, first, nullptr, slack);
-    per_region[r] = step
-                        ? offset_levels_from(std::move(level1), *step, p.max_levels, parallel)
-                        : offset_levels_from(std::move(level1), p.stepover, p.max_levels, parallel);
+    per_region[r] =
+        step
+            ? offset_levels_from(std::move(level1), *step, p.max_levels, parallel, p.half_step_last)
+            : offset_levels_from(std::move(level1), p.stepover, p.max_levels, parallel);
   });
   PocketOffsetResult out;
   for (std::size_t r = 0; r < regions.size(); ++r) {

@@ -23,6 +23,7 @@ struct PocketOffsetParams {
   double stock = 0;         // mm left on walls and islands
   double tolerance = 0.01;  // mm: NURBS curves become arcs within this
   std::uint32_t max_levels = 100000;
+  bool half_step_last = false;  // with per-level steps: see offset_levels_from
 };
 
 struct PocketLoop {

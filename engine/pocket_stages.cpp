@@ -84,7 +84,6 @@ Uncut uncut_regions(const PocketOffsetResult& off, const LevelGroups& groups, do
     // nothing (the centre band's step is the one that emptied the next level).
     const double step = inner[g].empty() ? centre_step : off.loops[inner[g][0]].step;
     if (step <= radius) return;
-    if (band_cut(outer_loops, inner_loops, radius)) return;
     const std::vector<OffsetLoop> u = uncut_between(outer_loops, inner_loops, radius);
     if (u.empty()) return;
     Band& b = bands[g];
@@ -185,6 +184,7 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
   op.stepover = p.stepover;
   op.stock = p.stock;
   op.tolerance = p.tolerance;
+  op.half_step_last = p.half_step_last;
   out.off = offset_pocket(regions, op, p.step);
   const PocketOffsetResult& off = out.off;
   std::vector<bool> fits(regions.size(), false);
@@ -255,11 +255,17 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
   return out;
 }
 
-void ChunkBuilder::move(const Vec3& p, PathKind kind) {
+void ChunkBuilder::move(const Vec3& p, PathKind kind, const double* payload) {
+  const auto set_last = [&] {
+    for (int k = 0; k < width_; ++k)
+      last_[static_cast<std::size_t>(k)] =
+          payload ? payload[k] : std::numeric_limits<double>::quiet_NaN();
+  };
   if (!has_pos_) {
     pos_ = p;
     has_pos_ = true;
     open_ = false;
+    set_last();
     return;
   }
   if ((p - pos_).norm() == 0) return;
@@ -272,6 +278,7 @@ void ChunkBuilder::move(const Vec3& p, PathKind kind) {
   }
   const double len = (p - pos_).norm();
   (kind == PathKind::kCut ? cut_ : kind == PathKind::kRapid ? rapid_ : link_) += len;
+  set_last();
   put(p);
   pos_ = p;
 }
@@ -280,6 +287,7 @@ void ChunkBuilder::put(const Vec3& p) {
   cl_.xyz.insert(cl_.xyz.end(), {p.x(), p.y(), p.z()});
   cl_.contact.push_back(0);
   ++cl_.path_sizes.back();
+  if (payload_) payload_->insert(payload_->end(), last_.begin(), last_.end());
 }
 
 }  // namespace ncpath::pocket_stage

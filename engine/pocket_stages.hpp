@@ -4,6 +4,7 @@
 // loops, unreachable area, parts with their start and planned planar path. Internal to the
 // engine.
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "engine/cl_chunk.hpp"
@@ -24,6 +25,7 @@ struct Start {
 struct Settings {
   double tool_radius = 3, stepover = 1.5, stock = 0, tolerance = 0.01;
   const StepFn* step = nullptr;  // per-level steps (then stepover is only the fallback)
+  bool half_step_last = false;   // with step: a half step where the full one leaves nothing
   CutOrder order = CutOrder::kOutward;
   Milling milling = Milling::kClimb;
   double helix_radius = 0;  // 0: half the tool radius
@@ -50,7 +52,14 @@ class ChunkBuilder {
  public:
   ChunkBuilder(ClChunk& cl, double& cut, double& link, double& rapid)
       : cl_(cl), cut_(cut), link_(link), rapid_(rapid) {}
-  void move(const Vec3& p, PathKind kind);
+  // Per-point payload (e.g. CC point and normal): `width` doubles per CL point, NaN where a
+  // move gives none.
+  void set_payload(std::vector<double>* out, int width) {
+    payload_ = out;
+    width_ = width;
+    last_.assign(static_cast<std::size_t>(width), std::numeric_limits<double>::quiet_NaN());
+  }
+  void move(const Vec3& p, PathKind kind, const double* payload = nullptr);
   const Vec3& pos() const { return pos_; }
   bool started() const { return has_pos_; }
 
@@ -61,6 +70,9 @@ class ChunkBuilder {
   Vec3 pos_ = Vec3::Zero();
   PathKind kind_ = PathKind::kCut;
   bool has_pos_ = false, open_ = false;
+  std::vector<double>* payload_ = nullptr;
+  int width_ = 0;
+  std::vector<double> last_;  // payload of pos_
 };
 
 }  // namespace ncpath::pocket_stage

@@ -66,7 +66,7 @@ OffsetLevels offset_levels_from(OffsetResult r, double step, std::uint32_t max_l
 }
 
 OffsetLevels offset_levels_from(OffsetResult r, const StepFn& step, std::uint32_t max_levels,
-                                const ForEach& for_each) {
+                                const ForEach& for_each, bool half_step_last) {
   OffsetLevels out;
   out.open_fragments += r.stats.open_fragments;
   std::uint32_t level = 1;
@@ -98,6 +98,13 @@ OffsetLevels offset_levels_from(OffsetResult r, const StepFn& step, std::uint32_
       }
       steps[r] = step(level - 1, region);
       slots[r] = offset_loops(loops, steps[r], &area2);
+      // One more level at half the step where the full step leaves nothing: the region's
+      // inradius is below the step, so the half-step level's is below half of it and this
+      // ends (each extra level is at least half a step inside its parent).
+      if (half_step_last && slots[r].loops.empty()) {
+        steps[r] *= 0.5;
+        slots[r] = offset_loops(loops, steps[r], &area2);
+      }
     });
     for (std::size_t r = 0; r < regions.size(); ++r) {
       out.open_fragments += slots[r].stats.open_fragments;

@@ -56,8 +56,12 @@ OffsetLevels offset_levels_from(OffsetResult first_level, double step,
 // scallop height along those loops). Called from the for_each tasks: must be thread-safe.
 using StepFn =
     std::function<double(std::uint32_t level, const std::vector<const OffsetLoop*>& region)>;
+// half_step_last: when a region's offset by its step is empty, offset it by half the step
+// instead (at most once in a row): the last gap between neighbouring loops is then at most
+// the step (a ball's scallop stays within its bound in the middle too).
 OffsetLevels offset_levels_from(OffsetResult first_level, const StepFn& step,
                                 std::uint32_t max_levels = 1000000,
-                                const ForEach& for_each = sequential_for_each);
+                                const ForEach& for_each = sequential_for_each,
+                                bool half_step_last = false);
 
 }  // namespace ncpath
