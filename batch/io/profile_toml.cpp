@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "batch/io/reader_support.hpp"
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/curves/segment.hpp"
 #include "kernels/geom/tolerance.hpp"
@@ -289,13 +290,7 @@ ProfileSoup parse_profile_toml(std::string_view text, const std::filesystem::pat
 }
 
 ProfileSoup read_profile_toml(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw ReadError(path, "", "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ReadError(path, "", "cannot open");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_profile_toml(ss.str(), path);
+  return parse_profile_toml(detail::read_file_bytes(path), path);
 }
 
 }  // namespace ncpath::io
