@@ -1,5 +1,5 @@
-// ncpath command line: raster, drop, offset, pocket and run (a TOML batch). Every command builds
-// the same JobSpec a batch file would, so a job behaves the same whichever way it was given.
+// ncpath command line: raster, drop, offset, pocket, pocket3d and run (a TOML batch). Every command
+// builds the same JobSpec a batch file would, so a job behaves the same whichever way it was given.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -95,7 +95,8 @@ jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
   return j;
 }
 
-// Options of the profile commands (offset, pocket); defaults as in OffsetParams/PocketParams.
+// Options of the profile commands (offset, pocket, pocket3d); defaults as in OffsetParams /
+// PocketParams.
 struct ProfileCli {
   std::string profile, tool = "flat:6", out = "ncpath-out.h5", name, stepover;
   int threads = 0;
@@ -106,18 +107,17 @@ struct ProfileCli {
   GcodeCli gcode;
 };
 
+// Returns the --tolerance option (pocket3d's default depends on --eps).
 CLI::Option* add_profile(CLI::App* app, ProfileCli& c) {
   app->add_option("--profile", c.profile, "Pocket profile: .dxf or .toml (docs/profile-format.md)")
       ->required();
   app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
       ->capture_default_str();
-  CLI::Option* stepover =
-      app->add_option("--stepover", c.stepover,
-                      "Distance between levels: mm, or a percentage of the tool diameter (40%)");
   app->add_option("--stock", c.stock, "Material left on walls and islands (mm)")
       ->capture_default_str();
-  app->add_option("--tolerance", c.tolerance, "NURBS-to-arc and arc-to-polyline tolerance (mm)")
-      ->capture_default_str();
+  CLI::Option* tolerance =
+      app->add_option("--tolerance", c.tolerance, "NURBS-to-arc and arc-to-polyline tolerance (mm)")
+          ->capture_default_str();
   app->add_option("--join-tolerance", c.join_tolerance,
                   "Profile end points closer than this are joined (mm)")
       ->capture_default_str();
@@ -126,7 +126,31 @@ CLI::Option* add_profile(CLI::App* app, ProfileCli& c) {
   app->add_option("--threads", c.threads, "Worker threads, 0 = all cores")->capture_default_str();
   app->add_flag("-q,--quiet", c.quiet, "No progress bar");
   add_gcode(app, c.gcode);
-  return stepover;
+  return tolerance;
+}
+
+CLI::Option* add_stepover(CLI::App* app, ProfileCli& c) {
+  return app->add_option("--stepover", c.stepover,
+                         "Distance between levels: mm, or a percentage of the tool diameter (40%)");
+}
+
+// --order and --milling of the linked pocket commands.
+void add_order_milling(CLI::App* app, std::string& order, std::string& milling) {
+  app->add_option("--order", order,
+                  "outward: start at the innermost loop; inward: start at the walls")
+      ->check(CLI::IsMember({"outward", "inward"}))
+      ->capture_default_str();
+  app->add_option("--milling", milling, "Cut direction (spindle clockwise, M3)")
+      ->check(CLI::IsMember({"climb", "conventional"}))
+      ->capture_default_str();
+}
+
+// Parses --order and --milling into the job's values: "" or the first problem.
+std::string order_milling(const std::string& order, const std::string& milling, CutOrder& o,
+                          Milling& m) {
+  if (std::string e = jobs::parse_order(order, o); !e.empty()) return "--order " + e;
+  if (std::string e = jobs::parse_milling(milling, m); !e.empty()) return "--milling " + e;
+  return "";
 }
 
 // The job of a profile command; `check` fills the operation's parameters and returns their
@@ -247,7 +271,8 @@ int main(int argc, char** argv) {
   jobs::OffsetParams op;
   CLI::App* offset =
       app.add_subcommand("offset", "Multi-level pocket offset loops of a DXF or TOML profile");
-  add_profile(offset, oc)->required();
+  add_profile(offset, oc);
+  add_stepover(offset, oc)->required();
   offset->add_option("--depth", op.depth, "Depth at which loops are written as paths (mm)")
       ->capture_default_str();
 
@@ -258,23 +283,45 @@ int main(int argc, char** argv) {
   CLI::App* pocket = app.add_subcommand(
       "pocket",
       "Linked pocket tool paths (clean-up, entry, depth passes) of a DXF or TOML profile");
-  add_profile(pocket, pc)->capture_default_str();
+  add_profile(pocket, pc);
+  add_stepover(pocket, pc)->capture_default_str();
   pocket->add_option("--depth", pp.depth, "Pocket depth below the top z = 0 (mm)")->required();
   pocket->add_option("--stepdown", pp.stepdown, "Depth per pass (mm), 0 = one pass at full depth")
       ->capture_default_str();
-  pocket
-      ->add_option("--order", order,
-                   "outward: start at the innermost loop; inward: start at the walls")
-      ->check(CLI::IsMember({"outward", "inward"}))
-      ->capture_default_str();
-  pocket->add_option("--milling", milling, "Cut direction (spindle clockwise, M3)")
-      ->check(CLI::IsMember({"climb", "conventional"}))
-      ->capture_default_str();
+  add_order_milling(pocket, order, milling);
   pocket->add_option("--helix-radius", pp.helix_radius, "Helix entry radius (mm), 0 = R/2")
       ->capture_default_str();
   pocket->add_option("--ramp-angle", pp.ramp_angle, "Helix and ramp descent angle (degrees)")
       ->capture_default_str();
   pocket->add_option("--clearance", pp.clearance, "Feed moves start this far above the top (mm)")
+      ->capture_default_str();
+
+  ProfileCli sc;
+  sc.tool = "";
+  jobs::Pocket3dJobParams sp;
+  std::string surface, order3 = "outward", milling3 = "climb";
+  CLI::App* pocket3d = app.add_subcommand(
+      "pocket3d", "Ball-end pocket paths over a sculptured (NURBS) bottom, scallop-height spaced");
+  CLI::Option* tolerance3 = add_profile(pocket3d, sc);
+  tolerance3->description("NURBS-to-arc tolerance of the profile (mm)")
+      ->default_str("min(0.01, eps/4)");
+  pocket3d->get_option("--tool")->description("Ball-end mill ball:D (mm)")->required();
+  pocket3d
+      ->add_option("--surface", surface,
+                   "Bottom surface: .toml (docs/profile-format.md, \"Bottom surfaces\")")
+      ->required();
+  pocket3d->add_option("--scallop", sp.scallop, "Cusp height left between passes (mm), < D/2")
+      ->required();
+  pocket3d->add_option("--eps", sp.eps, "Plan tolerance of the straight moves (mm)")
+      ->capture_default_str();
+  pocket3d->add_option("--delta", sp.delta, "Surface tolerance of the straight moves (mm)")
+      ->capture_default_str();
+  add_order_milling(pocket3d, order3, milling3);
+  pocket3d->add_option("--clearance", sp.clearance, "Feed moves start this far above z = 0 (mm)")
+      ->capture_default_str();
+  pocket3d
+      ->add_option("--min-interval", sp.min_interval,
+                   "Smallest plan distance between passes (mm), 0 = D/200")
       ->capture_default_str();
 
   std::string batch_file, batch_out;
@@ -326,15 +373,28 @@ int main(int argc, char** argv) {
           j.pocket.tolerance = pc.tolerance;
           j.pocket.join_tolerance = pc.join_tolerance;
           std::string e = jobs::parse_stepover(pc.stepover, j.tool, j.pocket.stepover);
-          if (e.empty() && !(e = jobs::parse_order(order, j.pocket.order)).empty())
-            e = "--order " + e;
-          if (e.empty() && !(e = jobs::parse_milling(milling, j.pocket.milling)).empty())
-            e = "--milling " + e;
+          if (e.empty()) e = order_milling(order, milling, j.pocket.order, j.pocket.milling);
           return e.empty() ? jobs::validate(j.pocket, j.tool) : e;
         },
         batch, quiet);
     // The pocket's rapids run at the safe height even without G-code.
     batch.jobs.back().gcode_safe_z = pc.gcode.safe_z;
+  } else if (pocket3d->parsed()) {
+    add_profile_job(
+        sc, jobs::Operation::kPocket3d,
+        [&](jobs::JobSpec& j) {
+          j.surface = surface;
+          j.pocket3d = sp;
+          j.pocket3d.stock = sc.stock;
+          j.pocket3d.tolerance =
+              tolerance3->count() > 0 ? sc.tolerance : jobs::default_pocket3d_tolerance(sp.eps);
+          j.pocket3d.join_tolerance = sc.join_tolerance;
+          const std::string e =
+              order_milling(order3, milling3, j.pocket3d.order, j.pocket3d.milling);
+          return e.empty() ? jobs::validate(j.pocket3d, j.tool) : e;
+        },
+        batch, quiet);
+    batch.jobs.back().gcode_safe_z = sc.gcode.safe_z;
   } else if (drop->parsed()) {
     jobs::JobSpec j = job_from(dc, jobs::Operation::kDrop);
     j.points = points;

@@ -7,6 +7,7 @@
 
 #include "batch/io/mesh_reader.hpp"
 #include "batch/jobs/offset_job.hpp"
+#include "batch/jobs/pocket3d_job.hpp"
 #include "batch/jobs/pocket_job.hpp"
 #include "batch/jobs/points_csv.hpp"
 #include "batch/output/cl_writer.hpp"
@@ -114,6 +115,10 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
         o.compute_s = r.compute_s;
       } else if (job.operation == Operation::kPocket) {
         const PocketJobSummary r = run_pocket_job(job, cl, open_gcode(0.0), stats);
+        o.points = r.points;
+        o.compute_s = r.compute_s;
+      } else if (job.operation == Operation::kPocket3d) {
+        const Pocket3dJobSummary r = run_pocket3d_job(job, cl, open_gcode(0.0), stats);
         o.points = r.points;
         o.compute_s = r.compute_s;
       } else {

@@ -22,6 +22,8 @@ const char* operation_name(Operation op) {
       return "offset";
     case Operation::kPocket:
       return "pocket";
+    case Operation::kPocket3d:
+      return "pocket3d";
   }
   return "?";
 }
@@ -64,9 +66,29 @@ std::string validate(const OffsetParams& p) {
   return os.str();
 }
 
+namespace {
+
+bool non_negative(double v) { return std::isfinite(v) && v >= 0; }
+
+// The keys the linked pocket operations (pocket, pocket3d) share; "" or the first problem.
+std::string validate_pocket_common(double stock, double tolerance, double join_tolerance,
+                                   double clearance) {
+  std::ostringstream os;
+  if (!non_negative(stock))
+    os << "stock must be >= 0 mm, got " << stock;
+  else if (!(std::isfinite(tolerance) && tolerance > 0))
+    os << "tolerance must be a positive number of mm, got " << tolerance;
+  else if (!(std::isfinite(join_tolerance) && join_tolerance > 0))
+    os << "join_tolerance must be a positive number of mm, got " << join_tolerance;
+  else if (!non_negative(clearance))
+    os << "clearance must be >= 0 mm, got " << clearance;
+  return os.str();
+}
+
+}  // namespace
+
 std::string validate(const PocketParams& p, const Cutter& tool) {
   std::ostringstream os;
-  auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
   if (!(std::isfinite(p.stepover) && p.stepover > 0))
     os << "stepover must be a positive number of mm, got " << p.stepover;
   else if (p.stepover > 2 * tool.radius)
@@ -76,19 +98,46 @@ std::string validate(const PocketParams& p, const Cutter& tool) {
     os << "depth must be a positive number of mm below the top, got " << p.depth;
   else if (!non_negative(p.stepdown))
     os << "stepdown must be >= 0 mm (0 = one pass at full depth), got " << p.stepdown;
-  else if (!non_negative(p.stock))
-    os << "stock must be >= 0 mm, got " << p.stock;
-  else if (!(std::isfinite(p.tolerance) && p.tolerance > 0))
-    os << "tolerance must be a positive number of mm, got " << p.tolerance;
-  else if (!(std::isfinite(p.join_tolerance) && p.join_tolerance > 0))
-    os << "join_tolerance must be a positive number of mm, got " << p.join_tolerance;
+  else if (std::string e =
+               validate_pocket_common(p.stock, p.tolerance, p.join_tolerance, p.clearance);
+           !e.empty())
+    return e;
   else if (!non_negative(p.helix_radius))
     os << "helix_radius must be >= 0 mm (0 = half the tool radius), got " << p.helix_radius;
   else if (!(std::isfinite(p.ramp_angle) && p.ramp_angle > 0 && p.ramp_angle < 90))
     os << "ramp_angle must be in (0, 90) degrees, got " << p.ramp_angle;
-  else if (!non_negative(p.clearance))
-    os << "clearance must be >= 0 mm, got " << p.clearance;
   return os.str();
+}
+
+std::string validate(const Pocket3dJobParams& p, const Cutter& tool) {
+  std::ostringstream os;
+  if (tool.type != CutterType::kBall)
+    os << "pocket3d needs a ball-end mill (ball:D): the path is planned for a ball of radius "
+          "D/2 touching the sculptured bottom; got a "
+       << cutter_type_name(tool.type) << " cutter";
+  else if (!(std::isfinite(p.scallop) && p.scallop > 0 && p.scallop < tool.radius))
+    os << "scallop must be a cusp height in mm between 0 and the ball radius " << tool.radius
+       << " mm, got " << p.scallop;
+  else if (!(std::isfinite(p.eps) && p.eps > 0))
+    os << "eps (plan tolerance) must be a positive number of mm, got " << p.eps;
+  else if (!(std::isfinite(p.delta) && p.delta > 0))
+    os << "delta (surface tolerance) must be a positive number of mm, got " << p.delta;
+  else if (std::string e =
+               validate_pocket_common(p.stock, p.tolerance, p.join_tolerance, p.clearance);
+           !e.empty())
+    return e;
+  else if (!non_negative(p.min_interval))
+    os << "min_interval must be >= 0 mm (0 = a hundredth of the ball radius), got "
+       << p.min_interval;
+  return os.str();
+}
+
+const char* order_name(CutOrder order) {
+  return order == CutOrder::kOutward ? "outward" : "inward";
+}
+
+const char* milling_name(Milling milling) {
+  return milling == Milling::kClimb ? "climb" : "conventional";
 }
 
 std::string parse_order(const std::string& text, CutOrder& out) {
@@ -265,6 +314,15 @@ void parse_offset_params(Keys& k, JobSpec& job) {
   k.number("join_tolerance", p.join_tolerance);
 }
 
+// order and milling of the linked pocket operations.
+void parse_order_milling(Keys& k, CutOrder& order, Milling& milling) {
+  std::string text;
+  if (k.string("order", text))
+    if (std::string e = parse_order(text, order); !e.empty()) k.fail("order", e);
+  if (k.string("milling", text))
+    if (std::string e = parse_milling(text, milling); !e.empty()) k.fail("milling", e);
+}
+
 void parse_pocket_params(Keys& k, JobSpec& job) {
   PocketParams& p = job.pocket;
   parse_stepover_key(k, job.tool, p.stepover);  // absent: the default set by parse_job
@@ -274,14 +332,24 @@ void parse_pocket_params(Keys& k, JobSpec& job) {
   k.number("stepdown", p.stepdown);
   k.number("tolerance", p.tolerance);
   k.number("join_tolerance", p.join_tolerance);
-  std::string text;
-  if (k.string("order", text))
-    if (std::string e = parse_order(text, p.order); !e.empty()) k.fail("order", e);
-  if (k.string("milling", text))
-    if (std::string e = parse_milling(text, p.milling); !e.empty()) k.fail("milling", e);
+  parse_order_milling(k, p.order, p.milling);
   k.number("helix_radius", p.helix_radius);
   k.number("ramp_angle", p.ramp_angle);
   k.number("clearance", p.clearance);
+}
+
+void parse_pocket3d_params(Keys& k, JobSpec& job) {
+  Pocket3dJobParams& p = job.pocket3d;
+  if (!k.number("scallop", p.scallop) && k.error.empty())
+    k.fail("scallop", "is required for a pocket3d job (cusp height between passes, mm)");
+  k.number("eps", p.eps);
+  k.number("delta", p.delta);
+  k.number("stock", p.stock);
+  if (!k.number("tolerance", p.tolerance)) p.tolerance = default_pocket3d_tolerance(p.eps);
+  k.number("join_tolerance", p.join_tolerance);
+  parse_order_milling(k, p.order, p.milling);
+  k.number("clearance", p.clearance);
+  k.number("min_interval", p.min_interval);
 }
 
 JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem::path& base) {
@@ -299,16 +367,28 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     job.operation = Operation::kOffset;
   else if (op == "pocket")
     job.operation = Operation::kPocket;
+  else if (op == "pocket3d")
+    job.operation = Operation::kPocket3d;
   else
-    k.fail("operation",
-           "must be \"raster\", \"drop\", \"offset\" or \"pocket\", got \"" + op + "\"");
+    k.fail(
+        "operation",
+        "must be \"raster\", \"drop\", \"offset\", \"pocket\" or \"pocket3d\", got \"" + op + "\"");
+  const bool profile_op = job.operation == Operation::kOffset ||
+                          job.operation == Operation::kPocket ||
+                          job.operation == Operation::kPocket3d;
   std::string input;
   if (k.string("input", input))
     job.input = (base / input).lexically_normal();
   else
-    k.fail("input", job.operation == Operation::kOffset || job.operation == Operation::kPocket
-                        ? "is required (a profile: DXF or TOML)"
-                        : "is required (a mesh file: STL or OFF)");
+    k.fail("input", profile_op ? "is required (a profile: DXF or TOML)"
+                               : "is required (a mesh file: STL or OFF)");
+  if (job.operation == Operation::kPocket3d) {
+    std::string surface;
+    if (k.string("surface", surface))
+      job.surface = (base / surface).lexically_normal();
+    else
+      k.fail("surface", "is required for a pocket3d job (the bottom surface: TOML)");
+  }
   if (k.string("tool", job.tool_text)) {
     if (std::string e = parse_tool(job.tool_text, job.tool); !e.empty() && k.error.empty())
       k.error = e;  // already names the tool
@@ -336,6 +416,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       parse_offset_params(pk, job);
     } else if (job.operation == Operation::kPocket) {
       parse_pocket_params(pk, job);
+    } else if (job.operation == Operation::kPocket3d) {
+      parse_pocket3d_params(pk, job);
     } else {
       std::string pts;
       if (pk.string("points", pts)) job.points = (base / pts).lexically_normal();
@@ -347,6 +429,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPocket)
       if (std::string e = validate(job.pocket, job.tool); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kPocket3d)
+      if (std::string e = validate(job.pocket3d, job.tool); !e.empty()) pk.fail("", e);
     if (!pk.error.empty()) k.error = k.error.empty() ? pk.error : k.error;
   }
   if (const toml::table* gt = k.table("gcode")) {
@@ -372,6 +456,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     k.fail("params.stepover", "is required for an offset job (mm, or a percentage like \"40%\")");
   if (job.operation == Operation::kPocket && !(job.pocket.depth > 0) && k.error.empty())
     k.fail("params.depth", "is required for a pocket job (mm below the top, > 0)");
+  if (job.operation == Operation::kPocket3d && !(job.pocket3d.scallop > 0) && k.error.empty())
+    k.fail("params.scallop", "is required for a pocket3d job (cusp height between passes, mm)");
   if (job.operation == Operation::kDrop && job.points.empty())
     k.fail("params.points", "is required for a drop job (CSV of x,y lines)");
   k.finish();
@@ -483,11 +569,25 @@ std::string params_json(const JobSpec& job) {
     j["stepdown"] = p.stepdown;
     j["tolerance"] = p.tolerance;
     j["join_tolerance"] = p.join_tolerance;
-    j["order"] = p.order == CutOrder::kOutward ? "outward" : "inward";
-    j["milling"] = p.milling == Milling::kClimb ? "climb" : "conventional";
+    j["order"] = order_name(p.order);
+    j["milling"] = milling_name(p.milling);
     j["helix_radius"] = p.helix_radius;
     j["ramp_angle"] = p.ramp_angle;
     j["clearance"] = p.clearance;
+    j["safe_z"] = job.gcode_safe_z.value_or(kDefaultSafeAboveTop);
+  } else if (job.operation == Operation::kPocket3d) {
+    const Pocket3dJobParams& p = job.pocket3d;
+    j["surface"] = job.surface.string();
+    j["scallop"] = p.scallop;
+    j["eps"] = p.eps;
+    j["delta"] = p.delta;
+    j["stock"] = p.stock;
+    j["tolerance"] = p.tolerance;
+    j["join_tolerance"] = p.join_tolerance;
+    j["order"] = order_name(p.order);
+    j["milling"] = milling_name(p.milling);
+    j["clearance"] = p.clearance;
+    j["min_interval"] = p.min_interval;
     j["safe_z"] = job.gcode_safe_z.value_or(kDefaultSafeAboveTop);
   } else {
     j["points"] = job.points.string();

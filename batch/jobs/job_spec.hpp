@@ -9,8 +9,9 @@
 //   threads = 0                  # 0 = all cores
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
-//   operation = "raster"          # "raster", "drop", "offset" or "pocket"
+//   operation = "raster"          # "raster", "drop", "offset", "pocket" or "pocket3d"
 //   input     = "../datasets/cache/meshes/bunny00.off"
+//   surface   = "bottom.toml"     # pocket3d only: the bottom surface
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
 //   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
 //   params    = { interval = 0.5, step = 0.1 }     # see docs/cli.md for every key
@@ -19,6 +20,7 @@
 //
 // A job whose keys or values are wrong is still a job: it carries the error (status
 // "invalid_parameter" and a message naming the key) and the batch records it and goes on.
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -33,7 +35,7 @@
 
 namespace ncpath::jobs {
 
-enum class Operation : std::uint8_t { kRaster, kDrop, kOffset, kPocket };
+enum class Operation : std::uint8_t { kRaster, kDrop, kOffset, kPocket, kPocket3d };
 
 // The offset operation (pocket offset loops, unlinked; PocketParams for tool paths).
 struct OffsetParams {
@@ -60,6 +62,25 @@ struct PocketParams {
   double clearance = 1;     // mm above the top where feed moves start
 };
 
+// The pocket3d operation: a pocket with a sculptured bottom (a NURBS surface from
+// JobSpec::surface) cut with a ball-end mill (engine/pocket3d.hpp). The stock top is z = 0.
+struct Pocket3dJobParams {
+  double scallop = 0;            // cusp height h left between passes, mm, in (0, R) (required)
+  double eps = 0.01;             // plan tolerance of the straight moves, mm
+  double delta = 0.01;           // surface tolerance of the straight moves, mm
+  double stock = 0;              // mm left on walls and islands
+  double tolerance = 0;          // mm: profile NURBS to arcs; 0 until parsed: default below
+  double join_tolerance = 1e-6;  // mm: profile end points closer than this are joined
+  CutOrder order = CutOrder::kOutward;
+  Milling milling = Milling::kClimb;
+  double clearance = 1;     // mm above the top where feed moves start
+  double min_interval = 0;  // smallest plan path interval, mm; 0 = R / 100
+};
+
+// Profile tolerance of a pocket3d job when none is given: well inside the plan tolerance eps,
+// so that arcs standing in for the profile's NURBS curves use little of it.
+inline double default_pocket3d_tolerance(double eps) { return std::min(0.01, eps / 4); }
+
 // Stepover of a pocket job when none is given: this fraction of the tool diameter.
 inline constexpr double kDefaultPocketStepoverFraction = 0.5;
 // Safe height of rapids when none is given: this many mm above the part's top (meshes) or
@@ -69,14 +90,16 @@ inline constexpr double kDefaultSafeAboveTop = 5;
 struct JobSpec {
   std::string name;
   Operation operation = Operation::kRaster;
-  std::filesystem::path input;   // mesh: STL or OFF
-  std::filesystem::path points;  // drop: CSV of "x,y" lines (blank line = new path)
+  std::filesystem::path input;    // mesh: STL or OFF
+  std::filesystem::path points;   // drop: CSV of "x,y" lines (blank line = new path)
+  std::filesystem::path surface;  // pocket3d: the bottom surface (TOML, docs/profile-format.md)
   MeshTransform transform;
   std::string tool_text;  // as the user wrote it, e.g. "ball:5"
   Cutter tool;
   RasterParams raster;
   OffsetParams offset;
   PocketParams pocket;
+  Pocket3dJobParams pocket3d;
   std::filesystem::path gcode;  // also write the job's paths as G-code here (empty: no)
   out::GcodeParams gcode_params;
   // Safe height for rapids, mm. Unset: 5 mm above the part's top for mesh jobs (z = 0 for
@@ -102,7 +125,7 @@ BatchSpec parse_batch_file(const std::filesystem::path& path);
 BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
                            const std::string& source_name);
 
-const char* operation_name(Operation op);  // "raster", "drop", "offset", "pocket"
+const char* operation_name(Operation op);  // "raster", "drop", "offset", "pocket", "pocket3d"
 
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);
@@ -110,10 +133,14 @@ std::string parse_stepover(const std::string& text, const Cutter& tool, double& 
 std::string validate(const OffsetParams& params);
 // "" when usable, else a message naming the key. tool: stepover may not exceed its diameter.
 std::string validate(const PocketParams& params, const Cutter& tool);
+// "" when usable, else a message naming the key; the tool must be a ball (its radius is R).
+std::string validate(const Pocket3dJobParams& params, const Cutter& tool);
 // "outward" / "inward" and "climb" / "conventional"; "" or an error to follow the key's name
 // ("must be \"outward\" or \"inward\", got \"up\"").
 std::string parse_order(const std::string& text, CutOrder& out);
 std::string parse_milling(const std::string& text, Milling& out);
+const char* order_name(CutOrder order);     // "outward" / "inward"
+const char* milling_name(Milling milling);  // "climb" / "conventional"
 // "linuxcnc" / "grbl" -> dialect; error message or "".
 std::string parse_dialect(const std::string& text, out::GcodeDialect& out);
 

@@ -29,9 +29,7 @@ PocketPathParams path_params(const JobSpec& job, const out::GcodeWriter* gcode) 
   p.depth = q.depth;
   p.stepdown = q.stepdown;
   p.clearance = q.clearance;
-  // One rapid height for the HDF5 paths and the G-code program.
-  p.safe_z =
-      gcode ? gcode->params().safe_z : job.gcode_safe_z.value_or(p.top + kDefaultSafeAboveTop);
+  p.safe_z = pocket_safe_z(job, gcode, p.top, p.clearance);
   p.order = q.order;
   p.milling = q.milling;
   p.helix_radius = q.helix_radius;
@@ -67,31 +65,29 @@ void push_path_stats(const PocketPathStats& s, std::vector<out::StatValue>& stat
 
 }  // namespace
 
+double pocket_safe_z(const JobSpec& job, const out::GcodeWriter* gcode, double top,
+                     double clearance) {
+  // One rapid height for the HDF5 paths and the G-code program.
+  const double safe_z =
+      gcode ? gcode->params().safe_z : job.gcode_safe_z.value_or(top + kDefaultSafeAboveTop);
+  if (safe_z < top + clearance) {
+    std::ostringstream os;
+    os << "safe height (gcode.safe_z, --safe-z) " << safe_z << " mm is below the clearance height "
+       << top + clearance << " mm (top " << top << " + clearance " << clearance
+       << "): rapids must run above the plane where feed moves start";
+    throw std::invalid_argument(os.str());
+  }
+  return safe_z;
+}
+
 PocketJobSummary run_pocket_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats) {
   PocketJobSummary summary;
   const ProfileInput in = read_profile_regions(job.input, job.pocket.join_tolerance, stats);
 
   const PocketPathParams p = path_params(job, gcode);
-  if (p.safe_z < p.top + p.clearance) {
-    std::ostringstream os;
-    os << "safe height (gcode.safe_z, --safe-z) " << p.safe_z
-       << " mm is below the clearance height " << p.top + p.clearance << " mm (top " << p.top
-       << " + clearance " << p.clearance
-       << "): rapids must run above the plane where feed moves start";
-    throw std::invalid_argument(os.str());
-  }
   Stopwatch compute_clock;
-  PocketPath path;
-  try {
-    path = plan_pocket(in.regions, p);
-  } catch (const RegionTooSmall& e) {
-    // The user drew entities: name those too.
-    const std::string names = boundary_entities(in, e.region);
-    throw std::invalid_argument(names.empty()
-                                    ? std::string(e.what())
-                                    : e.what() + std::string(" (boundary: ") + names + ")");
-  }
+  PocketPath path = plan_naming_entities(in, [&] { return plan_pocket(in.regions, p); });
   summary.compute_s = compute_clock.seconds();
 
   Stopwatch write_clock;

@@ -23,6 +23,13 @@ struct PocketJobSummary {
 // entities of that region's boundary, e.g. "LWPOLYLINE 2F").
 // gcode: when not null, the path is written there too; its safe height is the path's rapid
 // height (else job.gcode_safe_z, else 5 mm above the top z = 0).
+// The rapid height of a linked pocket job (pocket, pocket3d), mm: the G-code's safe height
+// when G-code is written, else job.gcode_safe_z, else kDefaultSafeAboveTop above the top.
+// Throws std::invalid_argument (naming --safe-z / gcode.safe_z) when it is below
+// top + clearance, the plane where feed moves start.
+double pocket_safe_z(const JobSpec& job, const out::GcodeWriter* gcode, double top,
+                     double clearance);
+
 PocketJobSummary run_pocket_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats);
 

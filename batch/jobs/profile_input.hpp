@@ -1,12 +1,14 @@
 #pragma once
-// The input half of the profile operations (offset, pocket): read a pocket profile (DXF or
-// TOML), chain and nest it into regions, and record the input statistics. One function, so
-// both operations accept the same files and report the same problems.
+// The input half of the profile operations (offset, pocket, pocket3d): read a pocket profile (DXF
+// or TOML), chain and nest it into regions, and record the input statistics. One function, so both
+// operations accept the same files and report the same problems.
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "batch/output/cl_writer.hpp"
+#include "engine/pocket_path.hpp"  // RegionTooSmall
 #include "kernels/pocket/profile.hpp"
 
 namespace ncpath::jobs {
@@ -27,5 +29,20 @@ ProfileInput read_profile_regions(const std::filesystem::path& path, double join
 // The input entities that drew the boundary of regions[region], for messages: "LWPOLYLINE 2F",
 // "LINE 30, LINE 31, LINE 32 and 1 more"; "" when the curves carry no source.
 std::string boundary_entities(const ProfileInput& in, std::size_t region);
+
+// Runs `plan` (a pocket planner over in.regions) and returns what it returns. The user drew
+// entities, not regions: a RegionTooSmall it throws becomes std::invalid_argument with the
+// planner's message and the entities of that region's boundary ("... (boundary: CIRCLE 2F)").
+template <class Plan>
+auto plan_naming_entities(const ProfileInput& in, Plan&& plan) -> decltype(plan()) {
+  try {
+    return plan();
+  } catch (const RegionTooSmall& e) {
+    const std::string names = boundary_entities(in, e.region);
+    throw std::invalid_argument(names.empty()
+                                    ? std::string(e.what())
+                                    : e.what() + std::string(" (boundary: ") + names + ")");
+  }
+}
 
 }  // namespace ncpath::jobs
