@@ -211,26 +211,62 @@ TEST(Pocket3d, FlatBottomIsTheFlatPocketPath) {
 }
 
 // A vault (convex) and a trough (concave) cylinder under a disc pocket.
-void check_cylinder(double sign) {
-  const double r = 3, h = 0.2, rho = 50, cx = 30, cz = sign > 0 ? -60 : 40;
-  const NurbsSurface s = cylinder(cx, cz, rho, -5, 45, sign);
+// A cap of the sphere of radius rho about (cx, cy, cz) around its top (sign = +1, a dome) or
+// bottom (sign = -1, a bowl), exact: the inverse stereographic map (2u, 2v, 1 - u^2 - v^2) /
+// (1 + u^2 + v^2) over [-a, a]^2 is rational of degree 2 in u and in v; its homogeneous
+// coordinates are turned into Bernstein form by interpolation at t = 0, 1/2, 1.
+NurbsSurface sphere_cap(double cx, double cy, double cz, double rho, double a, double sign) {
+  NurbsSurface s;
+  s.degree_u = s.degree_v = 2;
+  s.nu = s.nv = 3;
+  s.knots_u = s.knots_v = {0, 0, 0, 1, 1, 1};
+  const double t[3] = {0, 0.5, 1};
+  const double inv[3][3] = {{1, 0, 0}, {-0.5, 2, -0.5}, {0, 0, 1}};  // Bernstein^-1 at t
+  Eigen::Vector4d f[3][3];  // homogeneous (x w, y w, z w, w) at the 3 x 3 parameters
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const double u = -a + 2 * a * t[i], v = -a + 2 * a * t[j], w = 1 + u * u + v * v;
+      f[i][j] = Eigen::Vector4d(rho * 2 * u + cx * w, rho * 2 * v + cy * w,
+                                sign * rho * (1 - u * u - v * v) + cz * w, w);
+    }
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      Eigen::Vector4d b = Eigen::Vector4d::Zero();
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) b += inv[k][i] * inv[l][j] * f[i][j];
+      s.ctrl.emplace_back(b.x() / b.w(), b.y() / b.w(), b.z() / b.w());
+      s.weights.push_back(b.w());
+    }
+  return s;
+}
+
+// A vault (convex) or trough (concave) cylinder, or a dome or bowl sphere cap, under a
+// disc pocket.
+void check_curved(double sign, bool sphere) {
+  const double r = 3, h = 0.2, rho = 50, cx = 30, cy = 20, cz = sign > 0 ? -60 : 40;
+  const NurbsSurface s =
+      sphere ? sphere_cap(cx, cy, cz, rho, 0.5, sign) : cylinder(cx, cz, rho, -5, 45, sign);
   Pocket3dParams p = params(r, h);
   const Vec2 centre(30, 20);
   const double wall = 18;
   const Pocket3dPath out = plan_pocket3d({disc_pocket(centre, wall)}, s, p);
-  // Ball centre on the cylinder of radius rho + R (vault) or rho - R (trough).
-  const double rc = sign > 0 ? rho + r : rho - r;
-  const auto tip = [&](double x) {
-    return cz + sign * std::sqrt(rc * rc - (x - cx) * (x - cx)) - r;
+  // Plan distance to the axis (cylinder) or centre (sphere).
+  const auto plan_d2 = [&](double x, double y) {
+    return (x - cx) * (x - cx) + (sphere ? (y - cy) * (y - cy) : 0.0);
   };
-  const auto bottom = [&](double x) {
-    return cz + sign * std::sqrt(rho * rho - (x - cx) * (x - cx));
+  // Ball centre on the surface offset by R: radius rho + R (convex) or rho - R (concave).
+  const double rc = sign > 0 ? rho + r : rho - r;
+  const auto tip = [&](double x, double y) {
+    return cz + sign * std::sqrt(rc * rc - plan_d2(x, y)) - r;
+  };
+  const auto bottom = [&](double x, double y) {
+    return cz + sign * std::sqrt(rho * rho - plan_d2(x, y));
   };
   // CL points: never below the analytic drop, at most delta above it.
   for_cut_points(out, [&](const Vec3& q, std::size_t) {
     if (q.z() > p.top + p.clearance - 1e-9) return;
-    EXPECT_GE(q.z(), tip(q.x()) - 1e-7) << q.transpose();
-    EXPECT_LE(q.z(), tip(q.x()) + p.delta + 1e-7) << q.transpose();
+    EXPECT_GE(q.z(), tip(q.x(), q.y()) - 1e-7) << q.transpose();
+    EXPECT_LE(q.z(), tip(q.x(), q.y()) + p.delta + 1e-7) << q.transpose();
   });
   // Moves: the ball (centre R above the tip) never enters the cylinder or the wall.
   double worst = 1e9, worst_wall = -1e9;
@@ -238,8 +274,8 @@ void check_cylinder(double sign) {
   double above = 0;  // largest height of a move over the drop curve: within delta
   for_move_samples(out, 0.02, [&](const Vec3& q) {
     const Vec3 c = q + Vec3(0, 0, r);
-    above = std::max(above, q.z() - tip(q.x()));
-    const double axis = std::hypot(c.x() - cx, c.z() - cz);
+    above = std::max(above, q.z() - tip(q.x(), q.y()));
+    const double axis = std::sqrt(plan_d2(c.x(), c.y()) + (c.z() - cz) * (c.z() - cz));
     worst = std::min(worst, sign > 0 ? axis - rho - r : rho - r - axis);
     worst_wall = std::max(worst_wall, (c.head<2>() - centre).norm() + r - wall);
     centres.push_back(c);
@@ -290,8 +326,8 @@ void check_cylinder(double sign) {
             if (dd < r * r) left = std::min(left, c.z() - std::sqrt(r * r - dd));
           }
         }
-      if (left - bottom(x) > max_scallop) {
-        max_scallop = left - bottom(x);
+      if (left - bottom(x, y) > max_scallop) {
+        max_scallop = left - bottom(x, y);
         worst_at = Vec2(x, y);
       }
     }
@@ -309,8 +345,10 @@ void check_cylinder(double sign) {
   EXPECT_EQ(0, std::memcmp(one.cc.data(), out.cc.data(), out.cc.size() * sizeof(double)));
 }
 
-TEST(Pocket3d, VaultCylinderNoGougeAndScallopWithinH) { check_cylinder(1); }
-TEST(Pocket3d, TroughCylinderNoGougeAndScallopWithinH) { check_cylinder(-1); }
+TEST(Pocket3d, VaultCylinderNoGougeAndScallopWithinH) { check_curved(1, false); }
+TEST(Pocket3d, TroughCylinderNoGougeAndScallopWithinH) { check_curved(-1, false); }
+TEST(Pocket3d, DomeSphereCapNoGougeAndScallopWithinH) { check_curved(1, true); }
+TEST(Pocket3d, BowlSphereCapNoGougeAndScallopWithinH) { check_curved(-1, true); }
 
 TEST(Pocket3d, BadSurfacesAndPocketsOffTheSurface) {
   const std::vector<Region> pocket = {rect_pocket(0, 0, 60, 40)};
