@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "batch/io/reader_support.hpp"
+#include "batch/io/toml_support.hpp"
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/curves/segment.hpp"
 #include "kernels/geom/tolerance.hpp"
@@ -17,9 +18,9 @@ namespace ncpath::io {
 namespace {
 
 // Builds the soup; every error names the item ("loop 0 segment 3: arc") and the TOML line.
-class Parser {
+class Parser : detail::TomlChecks {
  public:
-  explicit Parser(std::filesystem::path path) : path_(std::move(path)) {}
+  explicit Parser(std::filesystem::path path) : TomlChecks(std::move(path)) {}
 
   ProfileSoup run(const toml::table& root) {
     for (const auto& [key, node] : root) {
@@ -51,28 +52,6 @@ class Parser {
   }
 
  private:
-  [[noreturn]] void fail(const toml::node& at, const std::string& what, const std::string& msg) {
-    throw ReadError(path_, "line " + std::to_string(at.source().begin.line), what + ": " + msg);
-  }
-
-  void check_keys(const toml::table& t, const std::string& what,
-                  std::initializer_list<std::string_view> allowed) {
-    for (const auto& [key, node] : t) {
-      bool ok = false;
-      std::string list;
-      for (std::string_view a : allowed) {
-        ok = ok || key.str() == a;
-        list += (list.empty() ? "" : ", ") + std::string(a);
-      }
-      if (!ok)
-        fail(node, what, "unknown key '" + std::string(key.str()) + "' (expected " + list + ")");
-    }
-  }
-  const toml::node& need(const toml::table& t, std::string_view key, const std::string& what) {
-    const toml::node* n = t.get(key);
-    if (!n) fail(t, what, "missing key '" + std::string(key) + "'");
-    return *n;
-  }
   double number(const toml::node& n, const std::string& what, std::string_view key) {
     std::optional<double> v = n.is_number() ? n.value<double>() : std::nullopt;
     if (!v || !std::isfinite(*v))
@@ -272,7 +251,6 @@ class Parser {
     }
   }
 
-  std::filesystem::path path_;
   ProfileSoup soup_;
 };
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "batch/io/reader_support.hpp"
+#include "batch/io/toml_support.hpp"
 #include "kernels/curves/nurbs.hpp"  // clamped_uniform_knots
 
 namespace ncpath::io {
@@ -32,9 +33,9 @@ std::string count_of(std::size_t n, const char* one, const char* many) {
 
 // Builds the surface; every error names the table ("nurbs_surface"), the key and the TOML line.
 // The small helpers mirror those of profile_toml.cpp, whose messages these follow.
-class SurfaceParser {
+class SurfaceParser : detail::TomlChecks {
  public:
-  explicit SurfaceParser(std::filesystem::path path) : path_(std::move(path)) {}
+  explicit SurfaceParser(std::filesystem::path path) : TomlChecks(std::move(path)) {}
 
   NurbsSurface run(const toml::table& root) {
     const toml::node* native = nullptr;
@@ -77,28 +78,6 @@ class SurfaceParser {
   }
 
  private:
-  [[noreturn]] void fail(const toml::node& at, const std::string& what, const std::string& msg) {
-    throw ReadError(path_, cat({"line ", std::to_string(at.source().begin.line)}),
-                    cat({what, ": ", msg}));
-  }
-
-  void check_keys(const toml::table& t, const std::string& what,
-                  std::initializer_list<std::string_view> allowed) {
-    for (const auto& [key, node] : t) {
-      bool ok = false;
-      std::string list;
-      for (std::string_view a : allowed) {
-        ok = ok || key.str() == a;
-        list += (list.empty() ? "" : ", ") + std::string(a);
-      }
-      if (!ok) fail(node, what, cat({"unknown key '", key.str(), "' (expected ", list, ")"}));
-    }
-  }
-  const toml::node& need(const toml::table& t, std::string_view key, const std::string& what) {
-    const toml::node* n = t.get(key);
-    if (!n) fail(t, what, cat({"missing key '", key, "'"}));
-    return *n;
-  }
   int integer(const toml::table& t, std::string_view key, const std::string& what, int lo, int hi) {
     const toml::node& n = need(t, key, what);
     const std::optional<std::int64_t> v = n.is_integer() ? n.value<std::int64_t>() : std::nullopt;
@@ -215,8 +194,6 @@ class SurfaceParser {
   // Bounds that keep sizes in int and allocations sane; the control net must be listed anyway.
   static constexpr int kMaxDegree = 30;
   static constexpr int kMaxCount = 1'000'000;
-
-  std::filesystem::path path_;
 };
 
 }  // namespace
