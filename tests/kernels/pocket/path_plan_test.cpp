@@ -73,7 +73,9 @@ void check_invariants(const Planned& p, double step) {
     double cut = 0, loops = 0;
     for (std::size_t i = 0; i < path.moves.size(); ++i) {
       const Move2& m = path.moves[i];
-      if (i > 0) EXPECT_LT((path.moves[i - 1].seg.b - m.seg.a).norm(), 1e-9) << "gap before " << i;
+      if (i > 0) {
+        EXPECT_LT((path.moves[i - 1].seg.b - m.seg.a).norm(), 1e-9) << "gap before " << i;
+      }
       if (m.kind == MoveKind::kCut) cut += length(m.seg);
       // A link is a segment of at most one stepover, or travel along a loop (cut already).
       if (m.kind == MoveKind::kLink && length(m.seg) > step + tol::kLinkSlack) {
@@ -180,8 +182,12 @@ TEST(PathPlan, CleanupLoopsAreVisitedOnce) {
   for (std::size_t i = 0; i < path.moves.size(); ++i) {
     const Move2& m = path.moves[i];
     if (m.kind == MoveKind::kCleanup) cleanup += length(m.seg);
-    if (m.kind == MoveKind::kCleanupLink) EXPECT_LE(length(m.seg), r + tol::kLinkSlack);
-    if (i > 0) EXPECT_LT((path.moves[i - 1].seg.b - m.seg.a).norm(), 1e-9);
+    if (m.kind == MoveKind::kCleanupLink) {
+      EXPECT_LE(length(m.seg), r + tol::kLinkSlack);
+    }
+    if (i > 0) {
+      EXPECT_LT((path.moves[i - 1].seg.b - m.seg.a).norm(), 1e-9);
+    }
   }
   EXPECT_NEAR(cleanup, uncut_length, 1e-9 * uncut_length);
 }
