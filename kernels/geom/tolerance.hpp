@@ -193,4 +193,16 @@ inline constexpr double kDropBoundSnap = 1e-9;
 // parameters).
 inline constexpr double kDropInLeaf = 1e-9;
 
+// ---- Offset elements and drive-plane slicing (kernels/mesh/offset_elements, kernels/scan) ----
+
+// Dimensionless (sine of the bend angle). An edge whose two facets' opposite vertices lie
+// within this times their distance from the edge of the other facet's plane is flat
+// (EdgeKind::kFlat) rather than convex or concave. Informational: every edge is kept.
+inline constexpr double kEdgeFlatSine = 1e-12;
+
+// Dimensionless. An edge whose unit direction has a horizontal part shorter than this is
+// vertical: it has no cylinder piece in a drive plane (its top vertex's sphere reaches the
+// same height), matching the point drop-cutter, which hands vertical edges to their vertices.
+inline constexpr double kVerticalEdge = 1e-12;
+
 }  // namespace ncpath::tol

@@ -1,0 +1,115 @@
+#pragma once
+// Local offset of a triangle mesh by a ball radius R (issue 5): the elements whose upper
+// envelope is the drop-cutter surface of a ball-end mill, as structure-of-arrays.
+//
+// The ball centre of a ball-end mill dropped onto a mesh is the highest point at distance R
+// from the mesh, i.e. the upper envelope of the R-neighbourhoods of its facets. The
+// neighbourhood of one triangle is bounded by
+//   - its offset triangle: the triangle translated by R along its unit normal, turned so
+//     that n.z >= 0 (the tool comes from +z, so only the upper side can be touched);
+//   - a cylinder of radius R around each edge (between the planes through the edge's ends
+//     perpendicular to it);
+//   - a sphere of radius R around each vertex.
+// Choices (documented here because the envelope depends on them):
+//   - Every unique edge and every vertex gets its element, convex or concave. Concave edges
+//     and vertices lie below the envelope (their neighbouring offset triangles cover them),
+//     so keeping them costs a little time and never changes the envelope; deciding
+//     convexity robustly on scanned meshes (folds, near-flat edges) is not needed for
+//     exactness. EdgeKind is recorded for later stages (junction classification).
+//   - Open boundaries and non-manifold edges need nothing special: an edge used by 1 or 3+
+//     facets is one edge, one cylinder. Orientation (winding) is never used: facets count
+//     as two-sided, like the point drop-cutter (kernels/cutters/drop_cutter.hpp).
+//   - Degenerate facets (|e1 x e2| < tol::kDegenerateArea2) contribute nothing, not even
+//     their edges and vertices (the point drop-cutter skips them the same way). Unreferenced
+//     vertices are ignored.
+//   - Vertical facets (|n.z| < tol::kVerticalNormalZ) keep their offset triangle (flagged);
+//     slicers skip it: a ball dropped from above touches such a facet first at its top edge
+//     or vertex, whose cylinder and sphere give the same height.
+//
+// Element ids: facets [0, F), edges [F, F + E), vertices [F + E, F + E + V).
+//
+// Building is split into range kernels (count, fill) so that the engine can run them over
+// chunks in parallel and scatter without locks; build_offset_elements() is the sequential
+// reference that chains them.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "kernels/geom/tolerance.hpp"
+#include "kernels/geom/vec.hpp"
+#include "kernels/mesh/triangle_mesh.hpp"
+
+namespace ncpath {
+
+// How the (up to two) facets at an edge meet, as seen by a tool from +z (upward normals).
+enum class EdgeKind : std::uint8_t {
+  kConvex = 0,       // both facets fall away below each other's plane: a ridge
+  kConcave = 1,      // both rise above each other's plane: a valley
+  kFlat = 2,         // coplanar within tol::kEdgeFlatSine
+  kFold = 3,         // mixed signs: one facet overhangs the other (seen from above)
+  kBoundary = 4,     // one facet (open boundary of a scanned mesh)
+  kNonManifold = 5,  // three or more facets
+};
+const char* edge_kind_name(EdgeKind kind);
+
+struct OffsetElements {
+  double radius = 0;  // R, mm
+
+  // Positions of the mesh vertices (a copy of mesh.vertices, mm); edges and spheres index it.
+  std::vector<Vec3> points;
+
+  // Facets, F of them. facet_tri holds the offset triangle's vertices (source + R n, mm);
+  // facet_normal the unit normal with n.z >= 0; facet_source the index into mesh.facets.
+  std::vector<std::array<Vec3, 3>> facet_tri;
+  std::vector<Vec3> facet_normal;
+  std::vector<std::uint32_t> facet_source;
+  std::vector<std::array<std::uint32_t, 3>> facet_vertices;  // the source facet's indices
+  std::vector<std::uint8_t> facet_vertical;                  // 1 when |n.z| < tol::kVerticalNormalZ
+
+  // Edges, E of them: vertex indices into points (lo < hi), kind and number of facets.
+  std::vector<std::array<std::uint32_t, 2>> edge_vertices;
+  std::vector<EdgeKind> edge_kind;
+  std::vector<std::uint32_t> edge_facet_count;
+
+  // Spheres, V of them: indices into points.
+  std::vector<std::uint32_t> vertex_source;
+
+  std::size_t facet_count() const { return facet_tri.size(); }
+  std::size_t edge_count() const { return edge_vertices.size(); }
+  std::size_t vertex_count() const { return vertex_source.size(); }
+  std::size_t element_count() const { return facet_count() + edge_count() + vertex_count(); }
+  std::uint32_t edge_id(std::size_t e) const { return std::uint32_t(facet_count() + e); }
+  std::uint32_t vertex_id(std::size_t v) const {
+    return std::uint32_t(facet_count() + edge_count() + v);
+  }
+};
+
+// Unit normal of triangle (a, b, c) turned to n.z >= 0. False when degenerate.
+bool upward_unit_normal(const Vec3& a, const Vec3& b, const Vec3& c, Vec3& n);
+
+// Number of non-degenerate facets among mesh.facets[begin, end).
+std::uint32_t count_offset_facets(const TriangleMesh& mesh, std::uint32_t begin, std::uint32_t end);
+
+// Writes the non-degenerate facets of mesh.facets[begin, end), in order, into slots
+// first_slot, first_slot + 1, ... of out's facet arrays (already sized by the caller to the
+// total count) and also writes their half-edge keys into keys[3 * slot + k]: (lo << 32 | hi)
+// vertex indices of edge k.
+void fill_offset_facets(const TriangleMesh& mesh, double radius, std::uint32_t begin,
+                        std::uint32_t end, std::uint32_t first_slot, OffsetElements& out,
+                        std::span<std::uint64_t> keys);
+
+// Classifies unique edges [begin, end). sorted_keys holds all half-edge keys sorted, paired
+// with the facet slot that owns each (key_facet[i]); edge_start[e] is the first index in
+// sorted_keys of unique edge e (edge_start has E + 1 entries, the last = keys.size()). Writes
+// edge_vertices, edge_kind and edge_facet_count [begin, end) (sized by the caller).
+void classify_edges(std::span<const std::uint64_t> sorted_keys,
+                    std::span<const std::uint32_t> key_facet,
+                    std::span<const std::uint32_t> edge_start, std::uint32_t begin,
+                    std::uint32_t end, OffsetElements& out, double flat_sine = tol::kEdgeFlatSine);
+
+// Sequential reference build: facets, then unique edges (sorted by their vertex pair), then
+// referenced vertices (ascending index).
+OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius);
+
+}  // namespace ncpath

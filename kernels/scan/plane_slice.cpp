@@ -1,0 +1,267 @@
+#include "kernels/scan/plane_slice.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+
+namespace ncpath {
+
+const char* piece_kind_name(PieceKind kind) {
+  switch (kind) {
+    case PieceKind::kFacetLine:
+      return "facet-line";
+    case PieceKind::kSphereArc:
+      return "sphere-arc";
+    case PieceKind::kCylinderEllipse:
+      return "cylinder-ellipse";
+    case PieceKind::kCylinderLine:
+      return "cylinder-line";
+    case PieceKind::kCylinderCircle:
+      return "cylinder-circle";
+  }
+  return "?";
+}
+
+namespace {
+
+// Upper root w (centre z - A.z) of "distance from (x, y0, A.z + w) to the axis through A
+// along u = R": a w^2 - 2 b w + c = 0 with a = ux^2 + uy^2 (> 0: not vertical),
+// b = uz (p ux + q uy), c = p^2 + q^2 - (p ux + q uy)^2 - R^2, p = x - A.x, q = y0 - A.y.
+// Its discriminant simplifies to b^2 - a c = a R^2 - (uy p - ux q)^2. `ok` is false when
+// the line x = const misses the cylinder.
+double cylinder_upper_w(const Vec3& A, const Vec3& u, double R, double x, double y0, bool& ok) {
+  const double p = x - A.x(), q = y0 - A.y();
+  const double a = u.x() * u.x() + u.y() * u.y();
+  const double e = u.y() * p - u.x() * q;
+  const double disc = a * R * R - e * e;
+  ok = disc >= 0;
+  const double s = std::sqrt(std::max(0.0, disc));
+  const double g = p * u.x() + q * u.y();
+  const double b = u.z() * g;
+  if (b >= 0) return (b + s) / a;
+  // b < 0: (b + s) cancels; use the product of the roots, c / a.
+  const double c = p * p + q * q - g * g - R * R;
+  return c / (b - s);
+}
+
+double sphere_centre_z(const SlicePiece& pc, double x) {
+  const Vec3& v = pc.point;
+  const double d = v.y() - pc.y0, dx = x - v.x();
+  const double r2 = (pc.radius - d) * (pc.radius + d);
+  return v.z() + std::sqrt(std::max(0.0, r2 - dx * dx));
+}
+
+void slice_facet(const OffsetElements& el, std::uint32_t f, double y0,
+                 std::vector<SlicePiece>& out) {
+  if (el.facet_vertical[f]) return;
+  const auto& t = el.facet_tri[f];
+  double lo = INFINITY, hi = -INFINITY;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 &a = t[k], &b = t[(k + 1) % 3];
+    if (a.y() == y0) {
+      lo = std::min(lo, a.x());
+      hi = std::max(hi, a.x());
+    }
+    if ((a.y() < y0 && b.y() > y0) || (a.y() > y0 && b.y() < y0)) {
+      const double x = a.x() + (y0 - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  }
+  if (!(lo < hi)) return;
+  SlicePiece pc;
+  pc.kind = PieceKind::kFacetLine;
+  pc.element = f;
+  pc.x0 = lo;
+  pc.x1 = hi;
+  pc.y0 = y0;
+  pc.radius = el.radius;
+  pc.point = t[0];
+  pc.dir = el.facet_normal[f];
+  out.push_back(pc);
+}
+
+void slice_sphere(const OffsetElements& el, std::uint32_t v, double y0,
+                  std::vector<SlicePiece>& out) {
+  const Vec3& c = el.points[el.vertex_source[v]];
+  const double R = el.radius, d = c.y() - y0;
+  if (!(std::abs(d) < R)) return;
+  const double r = std::sqrt((R - d) * (R + d));
+  SlicePiece pc;
+  pc.kind = PieceKind::kSphereArc;
+  pc.element = el.vertex_id(v);
+  pc.x0 = c.x() - r;
+  pc.x1 = c.x() + r;
+  pc.y0 = y0;
+  pc.radius = R;
+  pc.point = c;
+  if (pc.x0 < pc.x1) out.push_back(pc);
+}
+
+void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0,
+                    std::vector<SlicePiece>& out) {
+  const auto& ev = el.edge_vertices[e];
+  const Vec3& A = el.points[ev[0]];
+  const Vec3 d = el.points[ev[1]] - A;
+  const double L = d.norm();
+  if (!(L > 0)) return;
+  const Vec3 u = d / L;
+  const double a = u.x() * u.x() + u.y() * u.y();
+  if (std::sqrt(a) < tol::kVerticalEdge) return;
+  const double R = el.radius, q = y0 - A.y();
+
+  // Candidate x breakpoints: the ends of the x range of the infinite cylinder's section
+  // (|uy p - ux q| <= R sqrt(a)) and the points where the section crosses the end planes
+  // t = 0 and t = L (on the circles of radius R around A and B perpendicular to u). The
+  // valid set is a union of intervals between consecutive breakpoints.
+  std::array<double, 6> bp;
+  int nb = 0;
+  if (u.y() != 0) {
+    const double h = R * std::sqrt(a);
+    const double p0 = (u.x() * q - h) / u.y(), p1 = (u.x() * q + h) / u.y();
+    bp[nb++] = A.x() + p0;
+    bp[nb++] = A.x() + p1;
+  }
+  const double exz = std::sqrt(u.x() * u.x() + u.z() * u.z());  // |u x e_y|
+  if (exz > 0) {
+    const Vec3 e1 = Vec3(-u.z(), 0, u.x()) / exz;  // horizontal, perpendicular to u and y
+    const Vec3 e2 = u.cross(e1);                   // e2.y = +-exz
+    for (double tau : {0.0, L}) {
+      const double sn = (q - tau * u.y()) / (R * e2.y());
+      if (!(std::abs(sn) <= 1)) continue;
+      const double cs = std::sqrt((1 - sn) * (1 + sn));
+      for (double c : {cs, -cs}) bp[nb++] = A.x() + tau * u.x() + R * (c * e1.x() + sn * e2.x());
+    }
+  }
+  if (nb < 2) return;
+  for (int i = 1; i < nb; ++i)  // insertion sort of at most 6 values
+    for (int j = i; j > 0 && bp[j] < bp[j - 1]; --j) std::swap(bp[j], bp[j - 1]);
+
+  PieceKind kind = PieceKind::kCylinderEllipse;
+  if (u.x() == 0 && u.z() == 0)
+    kind = PieceKind::kCylinderCircle;
+  else if (u.y() == 0)
+    kind = PieceKind::kCylinderLine;
+  SlicePiece pc;
+  pc.kind = kind;
+  pc.element = el.edge_id(e);
+  pc.y0 = y0;
+  pc.radius = R;
+  pc.point = A;
+  pc.dir = u;
+  pc.length = L;
+  bool open = false;  // a piece is being extended
+  for (int i = 0; i + 1 < nb; ++i) {
+    const double x0 = bp[i], x1 = bp[i + 1];
+    bool valid = false;
+    if (x0 < x1) {
+      const double xm = 0.5 * (x0 + x1);
+      bool ok;
+      const double w = cylinder_upper_w(A, u, R, xm, y0, ok);
+      const double t = (xm - A.x()) * u.x() + q * u.y() + w * u.z();
+      valid = ok && t >= 0 && t <= L;
+    }
+    if (valid) {
+      if (!open) {
+        pc.x0 = x0;
+        open = true;
+      }
+      pc.x1 = x1;
+    } else if (open && x0 < x1) {
+      out.push_back(pc);
+      open = false;
+    }
+  }
+  if (open) out.push_back(pc);
+}
+
+}  // namespace
+
+double centre_z(const SlicePiece& pc, double x) {
+  x = std::clamp(x, pc.x0, pc.x1);
+  switch (pc.kind) {
+    case PieceKind::kFacetLine: {
+      const Vec3 &p = pc.point, &n = pc.dir;
+      return p.z() + (n.x() * (p.x() - x) + n.y() * (p.y() - pc.y0)) / n.z();
+    }
+    case PieceKind::kSphereArc:
+      return sphere_centre_z(pc, x);
+    default: {
+      bool ok;
+      return pc.point.z() + cylinder_upper_w(pc.point, pc.dir, pc.radius, x, pc.y0, ok);
+    }
+  }
+}
+
+PieceContact piece_contact(const SlicePiece& pc, double x) {
+  x = std::clamp(x, pc.x0, pc.x1);
+  PieceContact r;
+  r.centre = Vec3(x, pc.y0, centre_z(pc, x));
+  switch (pc.kind) {
+    case PieceKind::kFacetLine:
+      r.cc = r.centre - pc.radius * pc.dir;
+      break;
+    case PieceKind::kSphereArc:
+      r.cc = pc.point;
+      break;
+    default: {
+      const double t = std::clamp((r.centre - pc.point).dot(pc.dir), 0.0, pc.length);
+      r.cc = pc.point + t * pc.dir;
+    }
+  }
+  const Vec3 d = r.centre - r.cc;
+  const double len = d.norm();
+  r.normal = len > 0 ? Vec3(d / len) : Vec3(0, 0, 1);
+  return r;
+}
+
+bool ellipse_of(const SlicePiece& pc, SectionEllipse& out) {
+  if (pc.kind != PieceKind::kCylinderEllipse && pc.kind != PieceKind::kCylinderCircle) return false;
+  const Vec3& u = pc.dir;
+  const Vec3 o = pc.point + u * ((pc.y0 - pc.point.y()) / u.y());
+  out.centre = Vec2(o.x(), o.z());
+  out.minor = pc.radius;
+  out.major = pc.radius / std::abs(u.y());
+  const double l = std::hypot(u.x(), u.z());
+  out.major_axis = l > 0 ? Vec2(u.x() / l, u.z() / l) : Vec2(1, 0);
+  return true;
+}
+
+bool line_of(const SlicePiece& pc, double& slope, double& intercept) {
+  if (pc.kind == PieceKind::kFacetLine) {
+    const Vec3 &p = pc.point, &n = pc.dir;
+    slope = -n.x() / n.z();
+    intercept = p.z() + (n.x() * p.x() + n.y() * (p.y() - pc.y0)) / n.z();
+    return true;
+  }
+  if (pc.kind == PieceKind::kCylinderLine) {
+    // Axis parallel to the plane at distance |q|: the upper section line is the axis' trace
+    // shifted by sqrt(R^2 - q^2) along the in-plane normal w = (-uz, ux) turned to +z.
+    const Vec3& u = pc.dir;
+    const double q = pc.y0 - pc.point.y();
+    const double h = std::sqrt(std::max(0.0, (pc.radius - q) * (pc.radius + q)));
+    Vec2 w(-u.z(), u.x());
+    if (w.y() < 0) w = -w;
+    slope = u.z() / u.x();
+    intercept = pc.point.z() + h * w.y() - slope * (pc.point.x() + h * w.x());
+    return true;
+  }
+  return false;
+}
+
+void slice_elements(const OffsetElements& el, double y0, std::uint32_t begin, std::uint32_t end,
+                    std::vector<SlicePiece>& out) {
+  const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
+  for (std::uint32_t id = begin; id < end; ++id) {
+    if (id < nf)
+      slice_facet(el, id, y0, out);
+    else if (id < nf + ne)
+      slice_cylinder(el, id - nf, y0, out);
+    else
+      slice_sphere(el, id - nf - ne, y0, out);
+  }
+}
+
+}  // namespace ncpath

@@ -1,0 +1,398 @@
+// Offset elements and drive-plane slicing (kernels/mesh/offset_elements, kernels/scan/
+// plane_slice): analytic cases, every piece point at distance R from its element (oracles
+// written here, independent of the kernels), and the upper envelope of all pieces equal to
+// the point drop-cutter (kernels/cutters/drop_cutter.hpp) with a ball.
+#include "kernels/scan/plane_slice.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "kernels/cutters/drop_cutter.hpp"
+#include "kernels/mesh/offset_elements.hpp"
+
+namespace ncpath {
+namespace {
+
+constexpr double kDistTol = 1e-9;  // mm: piece point vs exact distance definition
+constexpr double kDropTol = 1e-7;  // mm: envelope vs point drop-cutter (issue 5)
+
+// ---- oracles (brute-force geometry, no kernel code) ----
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (p - (a + t * d)).norm();
+}
+
+// Distance to a triangle: to its plane when the projection is inside (barycentric signs),
+// otherwise to the nearest of its three sides.
+double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const Vec3 proj = p - n * ((p - a).dot(n) / n.squaredNorm());
+  const double s0 = (b - a).cross(proj - a).dot(n), s1 = (c - b).cross(proj - b).dot(n);
+  const double s2 = (a - c).cross(proj - c).dot(n);
+  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return (p - proj).norm();
+  return std::min({point_segment_distance(p, a, b), point_segment_distance(p, b, c),
+                   point_segment_distance(p, c, a)});
+}
+
+// Distance from p to the element `id` of el, from the mesh data only.
+double element_distance(const OffsetElements& el, const TriangleMesh& mesh, std::uint32_t id,
+                        const Vec3& p) {
+  if (id < el.facet_count()) {
+    const auto& f = mesh.facets[el.facet_source[id]];
+    return point_triangle_distance(p, mesh.vertices[f[0]], mesh.vertices[f[1]],
+                                   mesh.vertices[f[2]]);
+  }
+  id -= std::uint32_t(el.facet_count());
+  if (id < el.edge_count()) {
+    const auto& e = el.edge_vertices[id];
+    return point_segment_distance(p, mesh.vertices[e[0]], mesh.vertices[e[1]]);
+  }
+  id -= std::uint32_t(el.edge_count());
+  return (p - mesh.vertices[el.vertex_source[id]]).norm();
+}
+
+// Brute-force point drop-cutter with a ball over all facets.
+double drop_all(const Cutter& cutter, const std::vector<PreparedFacet>& facets, double x,
+                double y) {
+  CutterContact best;
+  for (std::uint32_t i = 0; i < facets.size(); ++i) drop_facet(cutter, facets[i], x, y, i, best);
+  return best.tip_z;
+}
+
+std::vector<PreparedFacet> prepare_all(const TriangleMesh& mesh) {
+  std::vector<PreparedFacet> out;
+  for (const auto& f : mesh.facets) {
+    PreparedFacet pf;
+    if (prepare_facet(mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]], pf))
+      out.push_back(pf);
+  }
+  return out;
+}
+
+std::vector<SlicePiece> slice_all(const OffsetElements& el, double y0) {
+  std::vector<SlicePiece> pieces;
+  slice_elements(el, y0, 0, std::uint32_t(el.element_count()), pieces);
+  return pieces;
+}
+
+double envelope_tip(const std::vector<SlicePiece>& pieces, double x) {
+  double best = -std::numeric_limits<double>::infinity();
+  for (const SlicePiece& pc : pieces)
+    if (x >= pc.x0 && x <= pc.x1) best = std::max(best, tip_z(pc, x));
+  return best;
+}
+
+// ---- random meshes ----
+
+// A soup of random triangles (every edge a boundary edge), some steep, some overhanging.
+TriangleMesh random_soup(std::mt19937_64& rng, int count) {
+  std::uniform_real_distribution<double> pos(0, 20), off(-3, 3), zc(0, 4);
+  TriangleMesh m;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 c(pos(rng), pos(rng), zc(rng));
+    const auto base = std::uint32_t(m.vertices.size());
+    for (int k = 0; k < 3; ++k) m.vertices.push_back(c + Vec3(off(rng), off(rng), off(rng)));
+    m.facets.push_back({base, base + 1, base + 2});
+  }
+  return m;
+}
+
+// A random height field on an n x n grid (shared edges, convex and concave), with one
+// facet deleted (a hole: boundary edges inside) and one extra facet on an existing edge
+// (a non-manifold edge).
+TriangleMesh random_terrain(std::mt19937_64& rng, int n) {
+  std::uniform_real_distribution<double> h(0, 3), jitter(-0.3, 0.3);
+  TriangleMesh m;
+  const double step = 20.0 / (n - 1);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      m.vertices.emplace_back(i * step + jitter(rng), j * step + jitter(rng), h(rng));
+  auto id = [n](int i, int j) { return std::uint32_t(j * n + i); };
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  m.facets.erase(m.facets.begin() + std::ptrdiff_t(m.facets.size() / 2));
+  m.vertices.emplace_back(5.0, 5.0, 6.0);
+  m.facets.push_back({id(2, 2), id(3, 3), std::uint32_t(m.vertices.size() - 1)});
+  return m;
+}
+
+void check_mesh(const TriangleMesh& mesh, std::mt19937_64& rng, int planes, int xs_per_plane,
+                int& drop_checks) {
+  const double R = 1.25;
+  const OffsetElements el = build_offset_elements(mesh, R);
+  const auto facets = prepare_all(mesh);
+  const Cutter ball = ball_cutter(2 * R);
+  std::uniform_real_distribution<double> ry(-1, 21), rx(-1.5, 21.5), u01(0, 1);
+  int piece_checks = 0;
+  for (int k = 0; k < planes; ++k) {
+    const double y0 = ry(rng);
+    const auto pieces = slice_all(el, y0);
+    ASSERT_FALSE(pieces.empty());
+    for (const SlicePiece& pc : pieces) {
+      ASSERT_LE(pc.x0, pc.x1);
+      for (int s = 0; s < 3; ++s) {
+        const double x = pc.x0 + (pc.x1 - pc.x0) * (s == 0 ? 0.0 : s == 1 ? 1.0 : u01(rng));
+        const PieceContact c = piece_contact(pc, x);
+        ASSERT_NEAR(c.centre.z(), tip_z(pc, x) + R, 1e-12);
+        EXPECT_NEAR(element_distance(el, mesh, pc.element, c.centre), R, kDistTol)
+            << piece_kind_name(pc.kind) << " element " << pc.element << " x " << x;
+        // The contact point is on the element and the normal is the unit vector to the centre.
+        EXPECT_NEAR(element_distance(el, mesh, pc.element, c.cc), 0, kDistTol);
+        EXPECT_NEAR(c.normal.norm(), 1, 1e-12);
+        EXPECT_LT((c.cc + R * c.normal - c.centre).norm(), kDistTol);
+        ++piece_checks;
+      }
+    }
+    for (int s = 0; s < xs_per_plane; ++s) {
+      const double x = rx(rng);
+      const double want = drop_all(ball, facets, x, y0);
+      const double got = envelope_tip(pieces, x);
+      if (std::isinf(want)) {
+        EXPECT_TRUE(std::isinf(got) && got < 0) << "x " << x << " y " << y0;
+      } else {
+        EXPECT_NEAR(got, want, kDropTol) << "x " << x << " y " << y0;
+      }
+      ++drop_checks;
+    }
+  }
+  EXPECT_GT(piece_checks, 1000);
+}
+
+TEST(PlaneSlice, RandomSoupMatchesDistanceAndDropCutter) {
+  std::mt19937_64 rng(5);
+  int drop_checks = 0;
+  for (int m = 0; m < 3; ++m) check_mesh(random_soup(rng, 300), rng, 12, 60, drop_checks);
+  EXPECT_GE(drop_checks, 2000);
+}
+
+TEST(PlaneSlice, RandomTerrainMatchesDistanceAndDropCutter) {
+  std::mt19937_64 rng(55);
+  int drop_checks = 0;
+  for (int m = 0; m < 2; ++m) check_mesh(random_terrain(rng, 13), rng, 12, 90, drop_checks);
+  EXPECT_GE(drop_checks, 2000);
+}
+
+// ---- analytic cases ----
+
+TriangleMesh one_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return TriangleMesh{{a, b, c}, {{0, 1, 2}}};
+}
+
+TEST(OffsetElements, OpenSingleFacet) {
+  const auto mesh = one_triangle({0, 0, 1}, {10, 0, 1}, {0, 10, 2});
+  const OffsetElements el = build_offset_elements(mesh, 2);
+  ASSERT_EQ(el.facet_count(), 1u);
+  ASSERT_EQ(el.edge_count(), 3u);
+  ASSERT_EQ(el.vertex_count(), 3u);
+  EXPECT_EQ(el.element_count(), 7u);
+  EXPECT_EQ(el.edge_id(0), 1u);
+  EXPECT_EQ(el.vertex_id(0), 4u);
+  for (std::size_t e = 0; e < 3; ++e) {
+    EXPECT_EQ(el.edge_kind[e], EdgeKind::kBoundary);
+    EXPECT_EQ(el.edge_facet_count[e], 1u);
+  }
+  // Offset triangle: source + R n, n upward.
+  const Vec3 n = Vec3(0, -10, 100).normalized();
+  EXPECT_LT((el.facet_normal[0] - n).norm(), 1e-15);
+  EXPECT_LT((el.facet_tri[0][1] - (Vec3(10, 0, 1) + 2 * n)).norm(), 1e-14);
+}
+
+TEST(OffsetElements, DownwardWindingGivesUpwardNormal) {
+  const auto mesh = one_triangle({0, 0, 0}, {0, 10, 0}, {10, 0, 0});  // clockwise from above
+  const OffsetElements el = build_offset_elements(mesh, 1);
+  ASSERT_EQ(el.facet_count(), 1u);
+  EXPECT_EQ(el.facet_normal[0], Vec3(0, 0, 1));
+  EXPECT_EQ(el.facet_tri[0][0], Vec3(0, 0, 1));
+}
+
+TEST(OffsetElements, DegenerateFacetContributesNothing) {
+  TriangleMesh mesh{{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}}, {{0, 1, 2}, {0, 1, 3}}};
+  const OffsetElements el = build_offset_elements(mesh, 1);
+  EXPECT_EQ(el.facet_count(), 1u);
+  EXPECT_EQ(el.facet_source[0], 1u);
+  EXPECT_EQ(el.edge_count(), 3u);
+  EXPECT_EQ(el.vertex_count(), 3u);  // vertex 2 only belongs to the degenerate facet
+}
+
+// Two facets on the x axis edge (0,0,0)-(10,0,0), the second at y < 0 with height s*|y|.
+EdgeKind kind_of_hinge(double s) {
+  TriangleMesh mesh{{{0, 0, 0}, {10, 0, 0}, {5, 8, 0}, {5, -8, 8 * s}}, {{0, 1, 2}, {1, 0, 3}}};
+  const OffsetElements el = build_offset_elements(mesh, 1);
+  for (std::size_t e = 0; e < el.edge_count(); ++e)
+    if (el.edge_vertices[e] == std::array<std::uint32_t, 2>{0, 1}) {
+      EXPECT_EQ(el.edge_facet_count[e], 2u);
+      return el.edge_kind[e];
+    }
+  ADD_FAILURE() << "hinge edge missing";
+  return EdgeKind::kBoundary;
+}
+
+TEST(OffsetElements, EdgeKinds) {
+  EXPECT_EQ(kind_of_hinge(0.5), EdgeKind::kConcave);
+  EXPECT_EQ(kind_of_hinge(-0.5), EdgeKind::kConvex);
+  EXPECT_EQ(kind_of_hinge(0), EdgeKind::kFlat);
+  TriangleMesh fan{{{0, 0, 0}, {10, 0, 0}, {5, 8, 0}, {5, -8, 1}, {5, 0, 9}},
+                   {{0, 1, 2}, {0, 1, 3}, {0, 1, 4}}};
+  const OffsetElements el = build_offset_elements(fan, 1);
+  EXPECT_EQ(el.edge_count(), 7u);
+  EXPECT_EQ(el.edge_kind[0], EdgeKind::kNonManifold);
+  EXPECT_EQ(el.edge_facet_count[0], 3u);
+}
+
+TEST(PlaneSlice, HorizontalFacetGivesPlaneHeight) {
+  const auto mesh = one_triangle({-100, -100, 3.5}, {100, -100, 3.5}, {0, 100, 3.5});
+  const double R = 2;
+  const OffsetElements el = build_offset_elements(mesh, R);
+  const auto pieces = slice_all(el, 7);
+  int facet_pieces = 0;
+  for (const SlicePiece& pc : pieces)
+    if (pc.kind == PieceKind::kFacetLine) {
+      ++facet_pieces;
+      EXPECT_NEAR(pc.x0, -46.5, 1e-12);  // the triangle's width at y = 7
+      EXPECT_NEAR(pc.x1, 46.5, 1e-12);
+      double slope, intercept;
+      ASSERT_TRUE(line_of(pc, slope, intercept));
+      EXPECT_EQ(slope, 0);
+      EXPECT_DOUBLE_EQ(intercept, 3.5 + R);
+      EXPECT_DOUBLE_EQ(tip_z(pc, 12.25), 3.5);
+      EXPECT_EQ(piece_contact(pc, 1).normal, Vec3(0, 0, 1));
+    }
+  EXPECT_EQ(facet_pieces, 1);
+  for (double x : {-40.0, 0.0, 33.0}) EXPECT_DOUBLE_EQ(envelope_tip(pieces, x), 3.5);
+}
+
+TEST(PlaneSlice, SphereThroughCentreIsHalfCircle) {
+  const auto mesh = one_triangle({1, 2, 3}, {11, 2, 3}, {1, 12, 3});
+  const double R = 1.5;
+  const OffsetElements el = build_offset_elements(mesh, R);
+  const auto pieces = slice_all(el, 12);  // through vertex (1, 12, 3) only
+  const SlicePiece* arc = nullptr;
+  for (const SlicePiece& pc : pieces)
+    if (pc.kind == PieceKind::kSphereArc) {
+      EXPECT_EQ(arc, nullptr);
+      arc = &pc;
+    }
+  ASSERT_NE(arc, nullptr);
+  EXPECT_DOUBLE_EQ(arc->x0, 1 - R);
+  EXPECT_DOUBLE_EQ(arc->x1, 1 + R);
+  for (double dx : {-1.5, -1.0, 0.0, 0.3, 1.4999, 1.5})
+    EXPECT_NEAR(centre_z(*arc, 1 + dx), 3 + std::sqrt(R * R - dx * dx), 1e-12);
+  const PieceContact c = piece_contact(*arc, 1 + 0.9);
+  EXPECT_LT((c.normal - Vec3(0.9, 0, 1.2) / 1.5).norm(), 1e-14);
+  // A plane at distance 0.9 from the vertex: circle of radius 1.2.
+  for (const SlicePiece& pc : slice_all(el, 12.9)) {
+    if (pc.kind == PieceKind::kSphereArc) {
+      EXPECT_NEAR(pc.x1 - pc.x0, 2.4, 1e-12);
+    }
+  }
+}
+
+// An edge along x at height 4, the drive plane at distance d from it: the cylinder gives
+// the line z = 4 + sqrt(R^2 - d^2) over exactly the edge's x range.
+TEST(PlaneSlice, CylinderParallelToPlaneIsLine) {
+  const auto mesh = one_triangle({0, 0, 4}, {10, 0, 4}, {5, -6, -20});
+  const double R = 2, d = 1.2;
+  const OffsetElements el = build_offset_elements(mesh, R);
+  int lines = 0;
+  for (const SlicePiece& pc : slice_all(el, d))
+    if (pc.kind == PieceKind::kCylinderLine) {
+      ++lines;
+      EXPECT_NEAR(pc.x0, 0, 1e-12);
+      EXPECT_NEAR(pc.x1, 10, 1e-12);
+      double slope, intercept;
+      ASSERT_TRUE(line_of(pc, slope, intercept));
+      EXPECT_NEAR(slope, 0, 1e-15);
+      EXPECT_NEAR(intercept, 4 + 1.6, 1e-12);
+      EXPECT_NEAR(centre_z(pc, 3.3), 5.6, 1e-12);
+    }
+  EXPECT_EQ(lines, 1);
+}
+
+// An edge along y: the section is the circle of radius R around the edge's trace.
+TEST(PlaneSlice, CylinderPerpendicularToPlaneIsCircle) {
+  const auto mesh = one_triangle({2, 0, 1}, {2, 10, 1}, {-5, 5, -30});
+  const double R = 1;
+  const OffsetElements el = build_offset_elements(mesh, R);
+  int circles = 0;
+  for (const SlicePiece& pc : slice_all(el, 4))
+    if (pc.kind == PieceKind::kCylinderCircle) {
+      ++circles;
+      EXPECT_DOUBLE_EQ(pc.x0, 1);
+      EXPECT_DOUBLE_EQ(pc.x1, 3);
+      EXPECT_NEAR(centre_z(pc, 2.6), 1 + 0.8, 1e-12);
+      SectionEllipse e;
+      ASSERT_TRUE(ellipse_of(pc, e));
+      EXPECT_DOUBLE_EQ(e.major, 1);
+      EXPECT_EQ(e.centre, Vec2(2, 1));
+    }
+  EXPECT_EQ(circles, 1);
+}
+
+// A horizontal diagonal edge (45 degrees to the plane): an elliptic arc whose points satisfy
+// the ellipse equation of ellipse_of (semi-axes R sqrt(2) along the edge, R vertically).
+TEST(PlaneSlice, DiagonalCylinderIsEllipse) {
+  const auto mesh = one_triangle({0, 0, 2}, {10, 10, 2}, {10, 0, -40});
+  const double R = 1;
+  const OffsetElements el = build_offset_elements(mesh, R);
+  int ellipses = 0;
+  for (const SlicePiece& pc : slice_all(el, 5))
+    if (pc.kind == PieceKind::kCylinderEllipse && std::abs(pc.dir.x() - pc.dir.y()) < 1e-15) {
+      ++ellipses;
+      SectionEllipse e;
+      ASSERT_TRUE(ellipse_of(pc, e));
+      EXPECT_NEAR(e.centre.x(), 5, 1e-12);
+      EXPECT_NEAR(e.centre.y(), 2, 1e-12);
+      EXPECT_NEAR(e.major, std::sqrt(2.0), 1e-12);
+      EXPECT_NEAR(e.minor, 1, 0);
+      EXPECT_NEAR(pc.x0, 5 - std::sqrt(2.0), 1e-12);  // the whole upper half of the ellipse
+      EXPECT_NEAR(pc.x1, 5 + std::sqrt(2.0), 1e-12);
+      for (double x : {4.0, 5.0, 5.7, 6.4}) {
+        const double dx = x - 5, dz = centre_z(pc, x) - 2;
+        EXPECT_NEAR(dx * dx / 2 + dz * dz, 1, 1e-12);
+        EXPECT_GE(dz, 0);
+      }
+    }
+  EXPECT_EQ(ellipses, 1);
+}
+
+// Near its end the diagonal edge's cylinder is cut by the end plane: the piece stops where
+// the section meets the plane through the end perpendicular to the edge.
+TEST(PlaneSlice, CylinderClippedAtEdgeEnd) {
+  const auto mesh = one_triangle({0, 0, 2}, {10, 10, 2}, {10, 0, -40});
+  const OffsetElements el = build_offset_elements(mesh, 1);
+  for (const SlicePiece& pc : slice_all(el, 9.5))
+    if (pc.kind == PieceKind::kCylinderEllipse && std::abs(pc.dir.x() - pc.dir.y()) < 1e-15) {
+      // End plane x + y = 20 at y = 9.5: x <= 10.5.
+      EXPECT_NEAR(pc.x1, 10.5, 1e-12);
+      EXPECT_NEAR(pc.x0, 9.5 - std::sqrt(2.0), 1e-12);
+    }
+}
+
+TEST(PlaneSlice, SplitRangesGiveTheSamePieces) {
+  std::mt19937_64 rng(9);
+  const TriangleMesh mesh = random_terrain(rng, 6);
+  const OffsetElements el = build_offset_elements(mesh, 0.8);
+  const auto all = slice_all(el, 7.3);
+  std::vector<SlicePiece> split;
+  const auto n = std::uint32_t(el.element_count());
+  for (std::uint32_t b = 0; b < n; b += 7) slice_elements(el, 7.3, b, std::min(n, b + 7), split);
+  ASSERT_EQ(all.size(), split.size());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    EXPECT_EQ(all[i].element, split[i].element);
+    EXPECT_EQ(all[i].x0, split[i].x0);
+    EXPECT_EQ(all[i].x1, split[i].x1);
+  }
+}
+
+}  // namespace
+}  // namespace ncpath
