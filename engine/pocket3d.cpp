@@ -23,11 +23,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string mm(double v) {
-  std::ostringstream os;
-  os << v << " mm";
-  return os.str();
-}
+using pocket_stage::mm;
 
 // The plan interval to the next level from a level region's loops: the smallest scallop
 // chord along them, sampled every R / 4 (and at least once per segment).
@@ -325,16 +321,7 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
   settings.helix = false;
   settings.half_step_last = p.half_step_last;
   const pocket_stage::Plan plan = pocket_stage::plan_pocket_parts(regions, settings);
-  st.loops = plan.off.loops.size();
-  st.levels = plan.off.levels;
-  st.open_fragments = plan.off.open_fragments;
-  st.components = plan.parts.size();
-  st.uncut_area_before = plan.uncut_before;
-  st.uncut_area_after = plan.uncut_after;
-  st.unreachable_area = plan.unreachable;
-  st.offset_s = plan.offset_s;
-  st.uncut_s = plan.uncut_s;
-  st.link_s = plan.link_s;
+  static_cast<PocketPlanStats&>(st) = plan.stats;
   st.min_interval = std::numeric_limits<double>::infinity();
   for (const PocketLoop& l : plan.off.loops) {
     out.loop_interval.push_back(l.step);
@@ -368,8 +355,6 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
   const double feed_z = p.top + p.clearance;
   for (std::size_t k = 0; k < plan.parts.size(); ++k) {
     const PlannedPath& path = plan.paths[k];
-    st.links += path.links;
-    st.cleanup_curves += path.cleanup_curves;
     // Runs of moves of one kind, CL points per run in parallel (each range of runs with
     // its own copy of the wall grid: its queries keep scratch state); then chords raised
     // where they dip.

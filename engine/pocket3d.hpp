@@ -62,17 +62,13 @@ struct Pocket3dParams {
   Milling milling = Milling::kClimb;
 };
 
-struct Pocket3dStats {
-  std::uint64_t loops = 0, levels = 0, components = 0, links = 0, cleanup_curves = 0;
-  std::uint64_t open_fragments = 0, retractions = 0;
+struct Pocket3dStats : PocketPlanStats {
   std::uint64_t cl_points = 0;                // CL points of cutting and linking moves
   std::uint64_t drops = 0;                    // ball drops onto the bottom (CL points and checks)
   std::uint64_t lifted_points = 0;            // CL points raised so that chords clear the bottom
   double max_lift = 0;                        // mm
   double min_interval = 0, max_interval = 0;  // plan path intervals used, mm
-  double cut_length = 0, link_length = 0, rapid_length = 0;                  // mm
-  double uncut_area_before = 0, uncut_area_after = 0, unreachable_area = 0;  // mm^2
-  double offset_s = 0, uncut_s = 0, link_s = 0, cl_s = 0;                    // seconds per stage
+  double cl_s = 0;                            // seconds: CL points (drops, chord checks, lifting)
 };
 
 struct Pocket3dPath {

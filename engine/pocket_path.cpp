@@ -34,13 +34,7 @@ void put_moves(ChunkBuilder& b, const std::vector<Move2>& moves, double z, doubl
 
 }  // namespace
 
-namespace {
-std::string mm(double v) {
-  std::ostringstream os;
-  os << v << " mm";
-  return os.str();
-}
-}  // namespace
+using pocket_stage::mm;
 
 std::string validate(const PocketPathParams& p) {
   const double vals[] = {p.tool_radius,       p.stepover, p.stock,        p.tolerance,
@@ -83,15 +77,7 @@ PocketPath plan_pocket(const std::vector<Region>& regions, const PocketPathParam
   const std::vector<std::vector<std::uint32_t>>& parts = plan_all.parts;
   const std::vector<Start>& starts = plan_all.starts;
   const std::vector<PlannedPath>& plans = plan_all.paths;
-  st.loops = plan_all.off.loops.size();
-  st.levels = plan_all.off.levels;
-  st.open_fragments = plan_all.off.open_fragments;
-  st.uncut_area_before = plan_all.uncut_before;
-  st.uncut_area_after = plan_all.uncut_after;
-  st.unreachable_area = plan_all.unreachable;
-  st.offset_s = plan_all.offset_s;
-  st.uncut_s = plan_all.uncut_s;
-  st.link_s = plan_all.link_s;
+  static_cast<PocketPlanStats&>(st) = plan_all.stats;
   const bool climb = p.milling == Milling::kClimb;
 
   // Depth passes, entries, rapids.
@@ -102,15 +88,12 @@ PocketPath plan_pocket(const std::vector<Region>& regions, const PocketPathParam
   for (int i = 1; i <= passes; ++i)
     floors.push_back(p.top - (i == passes ? p.depth : i * p.stepdown));
   st.depth_passes = static_cast<std::uint64_t>(passes);
-  st.components = parts.size();
   const double angle = p.ramp_angle_deg * std::numbers::pi / 180;
   const double feed_z = p.top + p.clearance;
   ChunkBuilder b(out.cl, st.cut_length, st.link_length, st.rapid_length);
   for (std::size_t k = 0; k < parts.size(); ++k) {
     const PlannedPath& plan = plans[k];
     const Start& s = starts[k];
-    st.links += plan.links;
-    st.cleanup_curves += plan.cleanup_curves;
     const Vec2 a = plan.start;
     if (k > 0) {
       b.move(Vec3(b.pos().x(), b.pos().y(), p.safe_z), PathKind::kRapid);

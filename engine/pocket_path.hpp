@@ -59,15 +59,14 @@ struct PocketPathParams {
   double ramp_angle_deg = 3;  // helix and ramp descent angle, degrees, in (0, 90)
 };
 
-struct PocketPathStats {
+// Statistics of every contour-parallel pocket (flat here, sculptured in engine/pocket3d.hpp).
+struct PocketPlanStats {
   std::uint64_t loops = 0;           // offset loops (one depth)
   std::uint64_t levels = 0;          // deepest level
   std::uint64_t open_fragments = 0;  // offset pieces that did not close (0 when all is well)
   std::uint64_t components = 0;      // parts of the pocket cut as one path each
-  std::uint64_t depth_passes = 0;
   std::uint64_t links = 0;           // loop-to-loop links per pass
   std::uint64_t cleanup_curves = 0;  // per pass
-  double cleanup_length = 0;         // mm, clean-up curves and their links, all passes
   double cut_length = 0;             // mm, cutting moves (loops, clean-up, entries)
   double link_length = 0;            // mm, links at depth (loop to loop, pass to pass)
   double rapid_length = 0;           // mm, moves at safe height and retractions
@@ -75,9 +74,15 @@ struct PocketPathStats {
   double uncut_area_before = 0;      // mm^2, uncut regions of the offset loops alone
   double uncut_area_after = 0;       // mm^2, what the clean-up curves do not cover
   double unreachable_area = 0;       // mm^2, corners and gaps the tool cannot reach
-  double slotting_length = 0;        // mm, full-engagement cutting (estimate, see docs)
+  double offset_s = 0, uncut_s = 0, link_s = 0;  // seconds per stage
+};
+
+struct PocketPathStats : PocketPlanStats {
+  std::uint64_t depth_passes = 0;
+  double cleanup_length = 0;   // mm, clean-up curves and their links, all passes
+  double slotting_length = 0;  // mm, full-engagement cutting (estimate, see docs)
   std::uint64_t helix_entries = 0, ramp_entries = 0, plunge_entries = 0;
-  double offset_s = 0, uncut_s = 0, link_s = 0, path_s = 0;  // seconds per stage
+  double path_s = 0;  // seconds: entries, passes, CL points
 };
 
 struct PocketPath {

@@ -197,14 +197,14 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
       throw RegionTooSmall(r, os.str());
     }
   const LevelGroups groups = level_groups(off);
-  out.offset_s = clock.seconds();
+  out.stats.offset_s = clock.seconds();
 
   clock = Stopwatch();
   // With per-level steps the step that emptied the innermost level is not kept: compute
   // the centre bands.
   Uncut uncut = uncut_regions(off, groups, p.tool_radius,
                               p.step ? std::numeric_limits<double>::infinity() : p.stepover);
-  out.uncut_before = uncut.before;
+  out.stats.uncut_area_before = uncut.before;
   // Unreachable: the region (less the stock) minus the tool swept around level 1, which is
   // the region eroded by R + stock already.
   std::vector<double> unreachable(regions.size(), 0);
@@ -223,9 +223,9 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
       if (l.region == r && l.level == 1) first.push_back(l.loop.segs);
     unreachable[r] = std::max(0.0, area - region_area(dilate(first, p.tool_radius)));
   });
-  for (double a : unreachable) out.unreachable += a;
+  for (double a : unreachable) out.stats.unreachable_area += a;
   out.cleanups = std::move(uncut.loops);
-  out.uncut_s = clock.seconds();
+  out.stats.uncut_s = clock.seconds();
 
   clock = Stopwatch();
   std::vector<PlanLoop> loops(off.loops.size());
@@ -250,9 +250,23 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
   for (const PlannedPath& plan : out.paths)
     for (std::uint32_t u : plan.unattached)
       unattached += std::abs(loop_area2(out.cleanups[u].segs)) / 2;
-  out.uncut_after = uncut.after + unattached;
-  out.link_s = clock.seconds();
+  out.stats.uncut_area_after = uncut.after + unattached;
+  out.stats.link_s = clock.seconds();
+  out.stats.loops = off.loops.size();
+  out.stats.levels = off.levels;
+  out.stats.open_fragments = off.open_fragments;
+  out.stats.components = out.parts.size();
+  for (const PlannedPath& plan : out.paths) {
+    out.stats.links += plan.links;
+    out.stats.cleanup_curves += plan.cleanup_curves;
+  }
   return out;
+}
+
+std::string mm(double v) {
+  std::ostringstream os;
+  os << v << " mm";
+  return os.str();
 }
 
 void ChunkBuilder::move(const Vec3& p, PathKind kind, const double* payload) {

@@ -5,6 +5,7 @@
 // engine.
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "engine/cl_chunk.hpp"
@@ -38,13 +39,16 @@ struct Plan {
   std::vector<std::vector<std::uint32_t>> parts;
   std::vector<Start> starts;       // per part
   std::vector<PlannedPath> paths;  // per part
-  double uncut_before = 0, uncut_after = 0, unreachable = 0;
-  double offset_s = 0, uncut_s = 0, link_s = 0;
+  // Everything but lengths and retractions, which come from the CL points.
+  PocketPlanStats stats;
 };
 
 // Offsets, uncut regions (per band, skipped where the band's step is at most R), unreachable
 // area, parts, starts and planned paths. Throws RegionTooSmall for a region with no level.
 Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& s);
+
+// "2.5 mm": a length for parameter messages.
+std::string mm(double v);
 
 // Writes moves into a chunk as paths of one kind each; consecutive paths share the junction
 // point; lengths per kind into the stats.

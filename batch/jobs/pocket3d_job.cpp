@@ -54,30 +54,15 @@ void check_below_top(const JobSpec& job, const Pocket3dPath& path, double top) {
   }
 }
 
-void push_plan_stats(const Pocket3dStats& st, std::vector<out::StatValue>& stats) {
+void push_pocket3d_stats(const Pocket3dStats& st, std::vector<out::StatValue>& stats) {
+  push_plan_stats(st, stats);
   const out::StatValue list[] = {
-      {"loops", i64(st.loops), ""},
-      {"levels", i64(st.levels), ""},
-      {"open_fragments", i64(st.open_fragments), ""},
-      {"components", i64(st.components), ""},
-      {"links", i64(st.links), ""},
-      {"cleanup_curves", i64(st.cleanup_curves), ""},
-      {"retractions", i64(st.retractions), ""},
       {"cl_points", i64(st.cl_points), ""},
       {"drops", i64(st.drops), ""},
       {"lifted_points", i64(st.lifted_points), ""},
       {"max_lift", st.max_lift, "mm"},
       {"min_interval", st.min_interval, "mm"},
       {"max_interval", st.max_interval, "mm"},
-      {"cut_length", st.cut_length, "mm"},
-      {"link_length", st.link_length, "mm"},
-      {"rapid_length", st.rapid_length, "mm"},
-      {"uncut_area_before", st.uncut_area_before, "mm^2"},
-      {"uncut_area_after", st.uncut_area_after, "mm^2"},
-      {"unreachable_area", st.unreachable_area, "mm^2"},
-      {"offset_s", st.offset_s, "s"},
-      {"uncut_s", st.uncut_s, "s"},
-      {"link_s", st.link_s, "s"},
       {"cl_s", st.cl_s, "s"},
   };
   stats.insert(stats.end(), std::begin(list), std::end(list));
@@ -124,7 +109,7 @@ Pocket3dJobSummary run_pocket3d_job(const JobSpec& job, out::ClJob& cl, out::Gco
       "level where the full interval leaves nothing)");
   const double write_s = write_clock.seconds();
 
-  push_plan_stats(path.stats, stats);
+  push_pocket3d_stats(path.stats, stats);
   stats.push_back({"points", i64(summary.points), ""});
   stats.push_back({"compute_s", summary.compute_s, "s"});
   stats.push_back({"write_s", write_s, "s"});

@@ -38,32 +38,42 @@ PocketPathParams path_params(const JobSpec& job, const out::GcodeWriter* gcode) 
 }
 
 void push_path_stats(const PocketPathStats& s, std::vector<out::StatValue>& stats) {
-  stats.push_back({"loops", i64(s.loops), ""});
-  stats.push_back({"levels", i64(s.levels), ""});
-  stats.push_back({"open_fragments", i64(s.open_fragments), ""});
-  stats.push_back({"components", i64(s.components), ""});
-  stats.push_back({"depth_passes", i64(s.depth_passes), ""});
-  stats.push_back({"links", i64(s.links), ""});
-  stats.push_back({"cleanup_curves", i64(s.cleanup_curves), ""});
-  stats.push_back({"cleanup_length", s.cleanup_length, "mm"});
-  stats.push_back({"cut_length", s.cut_length, "mm"});
-  stats.push_back({"link_length", s.link_length, "mm"});
-  stats.push_back({"rapid_length", s.rapid_length, "mm"});
-  stats.push_back({"retractions", i64(s.retractions), ""});
-  stats.push_back({"uncut_area_before", s.uncut_area_before, "mm^2"});
-  stats.push_back({"uncut_area_after", s.uncut_area_after, "mm^2"});
-  stats.push_back({"unreachable_area", s.unreachable_area, "mm^2"});
-  stats.push_back({"slotting_length", s.slotting_length, "mm"});
-  stats.push_back({"helix_entries", i64(s.helix_entries), ""});
-  stats.push_back({"ramp_entries", i64(s.ramp_entries), ""});
-  stats.push_back({"plunge_entries", i64(s.plunge_entries), ""});
-  stats.push_back({"offset_s", s.offset_s, "s"});
-  stats.push_back({"uncut_s", s.uncut_s, "s"});
-  stats.push_back({"link_s", s.link_s, "s"});
-  stats.push_back({"path_s", s.path_s, "s"});
+  push_plan_stats(s, stats);
+  const out::StatValue list[] = {
+      {"depth_passes", i64(s.depth_passes), ""},
+      {"cleanup_length", s.cleanup_length, "mm"},
+      {"slotting_length", s.slotting_length, "mm"},
+      {"helix_entries", i64(s.helix_entries), ""},
+      {"ramp_entries", i64(s.ramp_entries), ""},
+      {"plunge_entries", i64(s.plunge_entries), ""},
+      {"path_s", s.path_s, "s"},
+  };
+  stats.insert(stats.end(), std::begin(list), std::end(list));
 }
 
 }  // namespace
+
+void push_plan_stats(const PocketPlanStats& s, std::vector<out::StatValue>& stats) {
+  const out::StatValue list[] = {
+      {"loops", i64(s.loops), ""},
+      {"levels", i64(s.levels), ""},
+      {"open_fragments", i64(s.open_fragments), ""},
+      {"components", i64(s.components), ""},
+      {"links", i64(s.links), ""},
+      {"cleanup_curves", i64(s.cleanup_curves), ""},
+      {"cut_length", s.cut_length, "mm"},
+      {"link_length", s.link_length, "mm"},
+      {"rapid_length", s.rapid_length, "mm"},
+      {"retractions", i64(s.retractions), ""},
+      {"uncut_area_before", s.uncut_area_before, "mm^2"},
+      {"uncut_area_after", s.uncut_area_after, "mm^2"},
+      {"unreachable_area", s.unreachable_area, "mm^2"},
+      {"offset_s", s.offset_s, "s"},
+      {"uncut_s", s.uncut_s, "s"},
+      {"link_s", s.link_s, "s"},
+  };
+  stats.insert(stats.end(), std::begin(list), std::end(list));
+}
 
 double pocket_safe_z(const JobSpec& job, const out::GcodeWriter* gcode, double top,
                      double clearance) {
