@@ -205,4 +205,28 @@ inline constexpr double kEdgeFlatSine = 1e-12;
 // same height), matching the point drop-cutter, which hands vertical edges to their vertices.
 inline constexpr double kVerticalEdge = 1e-12;
 
+// Dimensionless (sine of the bend angle). Edges bent less than this keep their cylinder in
+// the scan even when concave (kernels/mesh/offset_elements.hpp, element_reachable): it fills
+// rounding slivers between the two nearly coplanar offset triangles. Clearly concave edges
+// are overlapped by those triangles by about R times the bend, far above rounding.
+inline constexpr double kFlatEdgeKeep = 1e-9;
+
+// ---- Upper envelope of a drive plane (kernels/scan/envelope) ----
+
+// mm. Two pieces within this of each other over an interval are tied there: the one with
+// the lower element id is kept (the envelope height is off by at most this).
+inline constexpr double kEnvelopeTie = 1e-10;
+
+// mm. Intervals narrower than this are decided at their midpoint (ends of crossings that
+// bisection cannot separate further).
+inline constexpr double kEnvelopeMinWidth = 1e-12;
+
+// mm. Neighbouring envelope spans whose heights differ by more than this at their common x
+// are joined by a vertical segment (the tool passes a vertical wall).
+inline constexpr double kEnvelopeJump = 1e-9;
+
+// Radians. A junction whose two tangent directions differ by less than this is tangent
+// (the path continues smoothly from one element to the next).
+inline constexpr double kJunctionTangentAngle = 1e-6;
+
 }  // namespace ncpath::tol

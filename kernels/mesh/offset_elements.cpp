@@ -73,20 +73,60 @@ void fill_offset_facets(const TriangleMesh& mesh, double radius, std::uint32_t b
 
 namespace {
 
+std::uint32_t opposite_vertex(const OffsetElements& el, std::uint32_t facet, std::uint32_t lo,
+                              std::uint32_t hi) {
+  const auto& fv = el.facet_vertices[facet];
+  std::uint32_t opp = fv[0];
+  for (std::uint32_t v : fv)
+    if (v != lo && v != hi) opp = v;
+  return opp;
+}
+
 // Sine-like signed height of the facet's vertex opposite to the edge (lo, hi) over the other
 // facet's plane, relative to its distance from the edge's start.
 double opposite_height(const OffsetElements& el, std::uint32_t plane_facet,
                        std::uint32_t other_facet, std::uint32_t lo, std::uint32_t hi) {
-  const auto& fv = el.facet_vertices[other_facet];
-  std::uint32_t opp = fv[0];
-  for (std::uint32_t v : fv)
-    if (v != lo && v != hi) opp = v;
-  const Vec3 d = el.points[opp] - el.points[lo];
+  const Vec3 d = el.points[opposite_vertex(el, other_facet, lo, hi)] - el.points[lo];
   const double len = d.norm();
   return len > 0 ? el.facet_normal[plane_facet].dot(d) / len : 0.0;
 }
 
 }  // namespace
+
+bool edge_wedge_reachable(const Vec3& e, const Vec3& w1, const Vec3& w2) {
+  const double s = e.dot(w1.cross(w2));
+  // Flat (or nearly): kept. Its cylinder only ties with the two offset triangles, but those
+  // are computed from different normals, so rounding can leave a sliver between them that
+  // the cylinder fills. Folded onto itself (w1 along w2): the edge is a boundary.
+  if (std::abs(s) <= tol::kFlatEdgeKeep * w1.norm() * w2.norm()) return true;
+  // Rays of the wedge: r1 perpendicular to w1 with r1 . w2 < 0, r2 likewise.
+  const double sign = s > 0 ? 1.0 : -1.0;
+  const Vec3 r1 = -sign * e.cross(w1), r2 = sign * e.cross(w2);
+  return r1.z() > 0 || r2.z() > 0;
+}
+
+bool element_reachable(const OffsetElements& el, std::uint32_t id) {
+  const std::size_t nf = el.facet_count(), ne = el.edge_count();
+  if (id < nf) return !el.facet_vertical[id];
+  if (id < nf + ne) return el.edge_reachable[id - nf] != 0;
+  return el.vertex_reachable[id - nf - ne] != 0;
+}
+
+void collect_vertices(OffsetElements& el) {
+  std::vector<std::uint8_t> used(el.points.size(), 0);
+  for (const auto& fv : el.facet_vertices)
+    for (std::uint32_t v : fv) used[v] = 1;
+  for (std::size_t e = 0; e < el.edge_count(); ++e)
+    if (el.edge_reachable[e])
+      for (std::uint32_t v : el.edge_vertices[e]) used[v] = 2;
+  el.vertex_source.clear();
+  el.vertex_reachable.clear();
+  for (std::uint32_t v = 0; v < used.size(); ++v)
+    if (used[v]) {
+      el.vertex_source.push_back(v);
+      el.vertex_reachable.push_back(used[v] == 2);
+    }
+}
 
 void classify_edges(std::span<const std::uint64_t> sorted_keys,
                     std::span<const std::uint32_t> key_facet,
@@ -99,12 +139,23 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
     out.edge_vertices[e] = {lo, hi};
     out.edge_facet_count[e] = i1 - i0;
     EdgeKind kind;
+    bool reachable = true;
     if (i1 - i0 == 1) {
       kind = EdgeKind::kBoundary;
     } else if (i1 - i0 > 2) {
       kind = EdgeKind::kNonManifold;
     } else {
       const std::uint32_t f1 = key_facet[i0], f2 = key_facet[i0 + 1];
+      const Vec3 a = out.points[lo], d = out.points[hi] - a;
+      const double len = d.norm();
+      if (len > 0) {
+        const Vec3 e = d / len;
+        Vec3 w1 = out.points[opposite_vertex(out, f1, lo, hi)] - a;
+        Vec3 w2 = out.points[opposite_vertex(out, f2, lo, hi)] - a;
+        w1 -= e * e.dot(w1);
+        w2 -= e * e.dot(w2);
+        reachable = edge_wedge_reachable(e, w1, w2);
+      }
       const double s1 = opposite_height(out, f1, f2, lo, hi);
       const double s2 = opposite_height(out, f2, f1, lo, hi);
       if (std::abs(s1) <= flat_sine && std::abs(s2) <= flat_sine)
@@ -117,6 +168,7 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
         kind = EdgeKind::kFold;
     }
     out.edge_kind[e] = kind;
+    out.edge_reachable[e] = reachable;
   }
 }
 
@@ -154,13 +206,9 @@ OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius) {
   el.edge_vertices.resize(ne);
   el.edge_kind.resize(ne);
   el.edge_facet_count.resize(ne);
+  el.edge_reachable.resize(ne);
   classify_edges(sorted, key_facet, edge_start, 0, ne, el);
-
-  std::vector<std::uint8_t> used(mesh.vertices.size(), 0);
-  for (const auto& fv : el.facet_vertices)
-    for (std::uint32_t v : fv) used[v] = 1;
-  for (std::uint32_t v = 0; v < used.size(); ++v)
-    if (used[v]) el.vertex_source.push_back(v);
+  collect_vertices(el);
   return el;
 }
 

@@ -71,9 +71,14 @@ struct OffsetElements {
   std::vector<std::array<std::uint32_t, 2>> edge_vertices;
   std::vector<EdgeKind> edge_kind;
   std::vector<std::uint32_t> edge_facet_count;
+  // 1 when the ball can touch the edge's interior from above without cutting into one of
+  // its two facets (see edge_reachable below); boundary and non-manifold edges always.
+  std::vector<std::uint8_t> edge_reachable;
 
-  // Spheres, V of them: indices into points.
+  // Spheres, V of them: indices into points. vertex_reachable: 0 when every edge at the
+  // vertex is unreachable (its sphere then lies below the envelope too).
   std::vector<std::uint32_t> vertex_source;
+  std::vector<std::uint8_t> vertex_reachable;
 
   std::size_t facet_count() const { return facet_tri.size(); }
   std::size_t edge_count() const { return edge_vertices.size(); }
@@ -84,6 +89,23 @@ struct OffsetElements {
     return std::uint32_t(facet_count() + edge_count() + v);
   }
 };
+
+// Whether element `id` can be on the upper envelope. Facets: unless vertical. An edge
+// shared by two facets: a ball touching its interior along direction d (from the contact to
+// the centre, perpendicular to the edge) cuts into a facet unless d . w <= 0 for the
+// in-plane directions w1, w2 pointing from the edge into both facets; those d form a wedge,
+// and the edge is reachable only if the wedge holds an upward direction (d.z > 0). At a
+// concave edge it does not: there the neighbouring offset triangles cross above the
+// cylinder, which therefore never shows (unreachable elements are skipped by the scan; the
+// drop-cutter comparisons in the tests cover this). Edges bent less than tol::kFlatEdgeKeep
+// are kept: their cylinder fills rounding slivers between the two offset triangles, which
+// come from different normals. A vertex is unreachable when all its edges are (a pit or a
+// valley floor: a ball touching only the vertex would cut into a facet around it).
+bool element_reachable(const OffsetElements& el, std::uint32_t id);
+
+// The wedge test above for the edge from a along unit direction e, with w1 and w2 pointing
+// from it into the two facets (any lengths).
+bool edge_wedge_reachable(const Vec3& e, const Vec3& w1, const Vec3& w2);
 
 // Unit normal of triangle (a, b, c) turned to n.z >= 0. False when degenerate.
 bool upward_unit_normal(const Vec3& a, const Vec3& b, const Vec3& c, Vec3& n);
@@ -107,6 +129,9 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
                     std::span<const std::uint32_t> key_facet,
                     std::span<const std::uint32_t> edge_start, std::uint32_t begin,
                     std::uint32_t end, OffsetElements& out, double flat_sine = tol::kEdgeFlatSine);
+
+// vertex_source and vertex_reachable from facet_vertices, edge_vertices, edge_reachable.
+void collect_vertices(OffsetElements& el);
 
 // Sequential reference build: facets, then unique edges (sorted by their vertex pair), then
 // referenced vertices (ascending index).

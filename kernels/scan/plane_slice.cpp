@@ -20,6 +20,8 @@ const char* piece_kind_name(PieceKind kind) {
       return "cylinder-line";
     case PieceKind::kCylinderCircle:
       return "cylinder-circle";
+    case PieceKind::kFloor:
+      return "floor";
   }
   return "?";
 }
@@ -179,9 +181,29 @@ void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0,
 
 }  // namespace
 
+SlicePiece floor_piece(double floor_z, double radius, double y0, double x0, double x1) {
+  SlicePiece pc;
+  pc.kind = PieceKind::kFloor;
+  pc.element = kNoElement;
+  pc.x0 = x0;
+  pc.x1 = x1;
+  pc.y0 = y0;
+  pc.radius = radius;
+  pc.point = Vec3(0, 0, floor_z + radius);
+  pc.dir = Vec3(0, 0, 1);
+  return pc;
+}
+
+bool is_linear(const SlicePiece& pc) {
+  return pc.kind == PieceKind::kFacetLine || pc.kind == PieceKind::kCylinderLine ||
+         pc.kind == PieceKind::kFloor;
+}
+
 double centre_z(const SlicePiece& pc, double x) {
   x = std::clamp(x, pc.x0, pc.x1);
   switch (pc.kind) {
+    case PieceKind::kFloor:
+      return pc.point.z();
     case PieceKind::kFacetLine: {
       const Vec3 &p = pc.point, &n = pc.dir;
       return p.z() + (n.x() * (p.x() - x) + n.y() * (p.y() - pc.y0)) / n.z();
@@ -195,11 +217,76 @@ double centre_z(const SlicePiece& pc, double x) {
   }
 }
 
+double slope(const SlicePiece& pc, double x) {
+  x = std::clamp(x, pc.x0, pc.x1);
+  switch (pc.kind) {
+    case PieceKind::kFloor:
+      return 0;
+    case PieceKind::kFacetLine:
+      return -pc.dir.x() / pc.dir.z();
+    case PieceKind::kSphereArc: {
+      const Vec3& v = pc.point;
+      const double d = v.y() - pc.y0, dx = x - v.x();
+      const double s2 = (pc.radius - d) * (pc.radius + d) - dx * dx;
+      if (s2 <= 0) return dx > 0 ? -INFINITY : INFINITY;
+      return -dx / std::sqrt(s2);
+    }
+    default: {
+      // w = (b + s) / a (see cylinder_upper_w): dw/dx = (uz ux - e uy / s) / a.
+      const Vec3 &A = pc.point, &u = pc.dir;
+      const double p = x - A.x(), q = pc.y0 - A.y();
+      const double a = u.x() * u.x() + u.y() * u.y();
+      const double e = u.y() * p - u.x() * q;
+      const double disc = a * pc.radius * pc.radius - e * e;
+      const double lin = u.z() * u.x();
+      if (u.y() == 0) return lin / a;
+      if (disc <= 0) return -e * u.y() > 0 ? INFINITY : -INFINITY;
+      return (lin - e * u.y() / std::sqrt(disc)) / a;
+    }
+  }
+}
+
+double argmax_tilted(const SlicePiece& pc, double m, double a, double b) {
+  a = std::max(a, pc.x0);
+  b = std::min(b, pc.x1);
+  if (!(a < b)) return a;
+  double xs;  // unconstrained maximiser of z - m x
+  switch (pc.kind) {
+    case PieceKind::kFloor:
+    case PieceKind::kFacetLine:
+    case PieceKind::kCylinderLine: {
+      double s = 0, c = 0;
+      line_of(pc, s, c);
+      return s - m >= 0 ? b : a;
+    }
+    case PieceKind::kSphereArc: {
+      // Circle of radius r about v.x: z' = -dx / sqrt(r^2 - dx^2) = m at dx = -m r / sqrt(1 + m^2).
+      const double d = pc.point.y() - pc.y0;
+      const double r = std::sqrt(std::max(0.0, (pc.radius - d) * (pc.radius + d)));
+      xs = pc.point.x() - m * r / std::sqrt(1 + m * m);
+      break;
+    }
+    default: {
+      SectionEllipse el;
+      if (!ellipse_of(pc, el)) return a;
+      // Maximise n . p over the ellipse, n = (-m, 1): p = o + (M^2 (n.a) a + m^2 (n.b) b) / k.
+      const Vec2 ax = el.major_axis, bx(-ax.y(), ax.x());
+      const Vec2 n(-m, 1);
+      const double na = n.dot(ax), nb = n.dot(bx);
+      const double k = std::sqrt(el.major * el.major * na * na + el.minor * el.minor * nb * nb);
+      if (!(k > 0)) return a;
+      xs = el.centre.x() + (el.major * el.major * na * ax.x() + el.minor * el.minor * nb * bx.x()) / k;
+    }
+  }
+  return std::clamp(xs, a, b);
+}
+
 PieceContact piece_contact(const SlicePiece& pc, double x) {
   x = std::clamp(x, pc.x0, pc.x1);
   PieceContact r;
   r.centre = Vec3(x, pc.y0, centre_z(pc, x));
   switch (pc.kind) {
+    case PieceKind::kFloor:
     case PieceKind::kFacetLine:
       r.cc = r.centre - pc.radius * pc.dir;
       break;
@@ -230,6 +317,11 @@ bool ellipse_of(const SlicePiece& pc, SectionEllipse& out) {
 }
 
 bool line_of(const SlicePiece& pc, double& slope, double& intercept) {
+  if (pc.kind == PieceKind::kFloor) {
+    slope = 0;
+    intercept = pc.point.z();
+    return true;
+  }
   if (pc.kind == PieceKind::kFacetLine) {
     const Vec3 &p = pc.point, &n = pc.dir;
     slope = -n.x() / n.z();

@@ -40,6 +40,7 @@ enum class PieceKind : std::uint8_t {
   kCylinderEllipse = 2,
   kCylinderLine = 3,
   kCylinderCircle = 4,
+  kFloor = 5,  // the floor plane (no element): the tool touches nothing higher
 };
 const char* piece_kind_name(PieceKind kind);
 
@@ -47,6 +48,7 @@ const char* piece_kind_name(PieceKind kind);
 //   kFacetLine: point = a point of the offset plane, dir = its unit normal (n.z > 0).
 //   kSphereArc: point = sphere centre (the mesh vertex), dir unused (zero).
 //   kCylinder*: point = edge start A, dir = unit axis u (A -> B), length = |B - A|.
+//   kFloor:     point = (0, 0, floor + R), dir = (0, 0, 1), element = kNoElement.
 struct SlicePiece {
   PieceKind kind = PieceKind::kFacetLine;
   std::uint32_t element = 0;  // id in the OffsetElements element space
@@ -58,8 +60,24 @@ struct SlicePiece {
   double length = 0;  // cylinders: edge length, mm
 };
 
+inline constexpr std::uint32_t kNoElement = 0xffffffffu;
+
+// The floor as a piece over [x0, x1] of the plane y = y0: tool tip at floor_z.
+SlicePiece floor_piece(double floor_z, double radius, double y0, double x0, double x1);
+
+// True for pieces whose height is linear in x (facet lines, cylinder lines, the floor).
+bool is_linear(const SlicePiece& piece);
+
 // Ball-centre height of the piece at x (mm); x is clamped to [x0, x1].
 double centre_z(const SlicePiece& piece, double x);
+
+// dz/dx of the piece at x (clamped to [x0, x1]); +-infinity where the arc is vertical.
+double slope(const SlicePiece& piece, double x);
+
+// Every piece is concave in x. Returns the x in [a, b] (within [x0, x1]) that maximises
+// centre_z(x) - m x: exact, from the point of the circle, ellipse or line whose tangent has
+// slope m (the end of [a, b] nearer to it when it lies outside).
+double argmax_tilted(const SlicePiece& piece, double m, double a, double b);
 // Tool-tip (CL) height: centre_z - R.
 inline double tip_z(const SlicePiece& piece, double x) { return centre_z(piece, x) - piece.radius; }
 

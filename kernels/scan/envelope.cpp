@@ -1,0 +1,293 @@
+#include "kernels/scan/envelope.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace ncpath {
+
+const char* junction_kind_name(JunctionKind kind) {
+  switch (kind) {
+    case JunctionKind::kConvex:
+      return "convex";
+    case JunctionKind::kSharpConcave:
+      return "sharp-concave";
+    case JunctionKind::kTangent:
+      return "tangent";
+  }
+  return "?";
+}
+
+namespace {
+
+// Decides which of two pieces is on top over intervals and appends the result as spans.
+class Merger {
+ public:
+  Merger(std::span<const SlicePiece> pieces, double tie, EnvelopeCounters& counters)
+      : pc_(pieces), tie_(tie), cnt_(counters) {}
+
+  std::vector<EnvelopeSpan> merge(const std::vector<EnvelopeSpan>& A,
+                                  const std::vector<EnvelopeSpan>& B) {
+    std::vector<EnvelopeSpan> out;
+    out.reserve(A.size() + B.size());
+    out_ = &out;
+    std::size_t i = 0, j = 0;
+    double ax = A.empty() ? 0 : A[0].x0, bx = B.empty() ? 0 : B[0].x0;
+    while (i < A.size() && j < B.size()) {
+      const EnvelopeSpan &sa = A[i], &sb = B[j];
+      if (sa.x1 <= bx) {
+        emit(sa.piece, ax, sa.x1);
+        if (++i < A.size()) ax = A[i].x0;
+        continue;
+      }
+      if (sb.x1 <= ax) {
+        emit(sb.piece, bx, sb.x1);
+        if (++j < B.size()) bx = B[j].x0;
+        continue;
+      }
+      const double lo = std::max(ax, bx), hi = std::min(sa.x1, sb.x1);
+      if (ax < lo) emit(sa.piece, ax, lo);
+      if (bx < lo) emit(sb.piece, bx, lo);
+      resolve(sa.piece, sb.piece, lo, hi);
+      ax = bx = hi;
+      if (sa.x1 <= hi && ++i < A.size()) ax = A[i].x0;
+      if (sb.x1 <= hi && ++j < B.size()) bx = B[j].x0;
+    }
+    while (i < A.size()) {
+      emit(A[i].piece, ax, A[i].x1);
+      if (++i < A.size()) ax = A[i].x0;
+    }
+    while (j < B.size()) {
+      emit(B[j].piece, bx, B[j].x1);
+      if (++j < B.size()) bx = B[j].x0;
+    }
+    return out;
+  }
+
+ private:
+  void emit(std::uint32_t piece, double s, double t) {
+    if (!(s < t)) return;
+    auto& out = *out_;
+    if (!out.empty() && out.back().piece == piece && out.back().x1 == s) {
+      out.back().x1 = t;
+      return;
+    }
+    out.push_back({piece, s, t});
+  }
+
+  // Lower element id first (the floor, kNoElement, last); then lower piece index.
+  bool before(std::uint32_t a, std::uint32_t b) const {
+    const std::uint32_t ea = pc_[a].element, eb = pc_[b].element;
+    return ea != eb ? ea < eb : a < b;
+  }
+
+  double diff(std::uint32_t A, std::uint32_t B, double x) const {
+    return centre_z(pc_[A], x) - centre_z(pc_[B], x);
+  }
+
+  void resolve(std::uint32_t p, std::uint32_t q, double s, double t) {
+    if (before(q, p)) std::swap(p, q);
+    decide(p, q, s, t, 0);
+  }
+
+  // A wins ties (A before B). Emits the spans of [s, t] left to right.
+  void decide(std::uint32_t A, std::uint32_t B, double s, double t, int depth) {
+    ++cnt_.decisions;
+    const SlicePiece &a = pc_[A], &b = pc_[B];
+    const double as = centre_z(a, s), at = centre_z(a, t);
+    const double bs = centre_z(b, s), bt = centre_z(b, t);
+    const double ds = as - bs, dt = at - bt;
+    const double w = t - s;
+    const double ma = (at - as) / w, mb = (bt - bs) / w;
+    // A - B >= chord_A - B >= -max(B - chord_A); exact maximum of a concave function.
+    const double x1 = argmax_tilted(b, ma, s, t);
+    const double low = std::min({as + ma * (x1 - s) - centre_z(b, x1), ds, dt});
+    if (low >= -tie_) return emit(A, s, t);
+    const double x2 = argmax_tilted(a, mb, s, t);
+    const double high = std::max({centre_z(a, x2) - (bs + mb * (x2 - s)), ds, dt});
+    if (high <= 0) return emit(B, s, t);
+    const double xm = 0.5 * (s + t);
+    if (w <= tol::kEnvelopeMinWidth || depth >= 200 || !(s < xm && xm < t))
+      return emit(diff(A, B, xm) >= -tie_ ? A : B, s, t);
+    if ((ds < 0 && dt > 0) || (ds > 0 && dt < 0)) {
+      const double r = crossing(A, B, s, t, ds, dt);
+      if (s < r && r < t) {
+        ++cnt_.crossings;
+        decide(A, B, s, r, depth + 1);
+        decide(A, B, r, t, depth + 1);
+        return;
+      }
+    }
+    decide(A, B, s, xm, depth + 1);
+    decide(A, B, xm, t, depth + 1);
+  }
+
+  // Root of A - B in (s, t), d(s) and d(t) of opposite signs (Illinois regula falsi).
+  double crossing(std::uint32_t A, std::uint32_t B, double s, double t, double ds,
+                  double dt) const {
+    int side = 0;
+    double x = 0.5 * (s + t);
+    for (int it = 0; it < 200; ++it) {
+      x = (s * dt - t * ds) / (dt - ds);
+      if (!(x > s && x < t)) x = 0.5 * (s + t);
+      if (!(x > s && x < t)) break;
+      const double dx = diff(A, B, x);
+      if (dx == 0) return x;
+      if ((dx < 0) == (dt < 0)) {
+        t = x;
+        dt = dx;
+        if (side == -1) ds *= 0.5;
+        side = -1;
+      } else {
+        s = x;
+        ds = dx;
+        if (side == 1) dt *= 0.5;
+        side = 1;
+      }
+      if (t - s <= 1e-15 * (1 + std::abs(x))) break;
+    }
+    return std::abs(ds) <= std::abs(dt) ? s : t;
+  }
+
+  std::span<const SlicePiece> pc_;
+  double tie_;
+  EnvelopeCounters& cnt_;
+  std::vector<EnvelopeSpan>* out_ = nullptr;
+};
+
+std::vector<EnvelopeSpan> envelope_of(Merger& m, std::span<const SlicePiece> pieces,
+                                      std::span<const std::uint32_t> order) {
+  if (order.size() == 1) {
+    const SlicePiece& p = pieces[order[0]];
+    if (!(p.x0 < p.x1)) return {};
+    return {EnvelopeSpan{order[0], p.x0, p.x1}};
+  }
+  const std::size_t half = order.size() / 2;
+  const auto left = envelope_of(m, pieces, order.first(half));
+  const auto right = envelope_of(m, pieces, order.subspan(half));
+  return m.merge(left, right);
+}
+
+// Unit direction of (dx, dz), dz possibly infinite.
+Vec2 direction(double dx, double dz) {
+  if (std::isinf(dz)) return Vec2(0, dz > 0 ? 1 : -1);
+  const Vec2 v(dx, dz);
+  const double n = v.norm();
+  return n > 0 ? Vec2(v / n) : Vec2(1, 0);
+}
+
+}  // namespace
+
+void upper_envelope(std::span<const SlicePiece> pieces, std::vector<EnvelopeSpan>& out,
+                    EnvelopeCounters* counters, double tie) {
+  out.clear();
+  if (pieces.empty()) return;
+  std::vector<std::uint32_t> order(pieces.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const SlicePiece &pa = pieces[a], &pb = pieces[b];
+    if (pa.x0 != pb.x0) return pa.x0 < pb.x0;
+    if (pa.element != pb.element) return pa.element < pb.element;
+    return a < b;
+  });
+  EnvelopeCounters local;
+  Merger m(pieces, tie, counters ? *counters : local);
+  out = envelope_of(m, pieces, order);
+}
+
+JunctionKind junction_kind(double dx1, double dz1, double dx2, double dz2) {
+  const Vec2 t1 = direction(dx1, dz1), t2 = direction(dx2, dz2);
+  const double angle = std::atan2(t1.x() * t2.y() - t1.y() * t2.x(), t1.dot(t2));
+  if (std::abs(angle) <= tol::kJunctionTangentAngle) return JunctionKind::kTangent;
+  return angle > 0 ? JunctionKind::kSharpConcave : JunctionKind::kConvex;
+}
+
+void plane_curve(std::span<const SlicePiece> pieces, std::span<const EnvelopeSpan> spans,
+                 PlaneCurve& out) {
+  out.segments.clear();
+  out.junctions.clear();
+  out.run_starts.clear();
+  auto push = [&](std::uint32_t piece, double x0, double x1) {
+    const SlicePiece& p = pieces[piece];
+    out.segments.push_back({piece, false, x0, x1, tip_z(p, x0), tip_z(p, x1)});
+  };
+  for (std::size_t k = 0; k < spans.size(); ++k) {
+    const EnvelopeSpan& sp = spans[k];
+    if (k == 0 || spans[k - 1].x1 < sp.x0) {
+      out.run_starts.push_back(std::uint32_t(out.segments.size()));
+      push(sp.piece, sp.x0, sp.x1);
+      continue;
+    }
+    const SlicePiece &p = pieces[spans[k - 1].piece], &q = pieces[sp.piece];
+    const double x = sp.x0;
+    const double zl = tip_z(p, x), zr = tip_z(q, x);
+    const double sl = slope(p, x), sr = slope(q, x);
+    const Vec3 bl = piece_contact(p, x).normal, br = piece_contact(q, x).normal;
+    CurveJunction j;
+    j.x = x;
+    j.element1 = p.element;
+    j.element2 = q.element;
+    if (std::abs(zl - zr) > tol::kEnvelopeJump) {
+      const bool left_high = zl > zr;
+      const std::uint32_t high = left_high ? spans[k - 1].piece : sp.piece;
+      const Vec3 bh = left_high ? bl : br;
+      const double dz = zr - zl;
+      j.z = zl;
+      j.kind = junction_kind(1, sl, 0, dz);
+      j.element2 = pieces[high].element;
+      j.b1 = bl;
+      j.b2 = bh;
+      j.segment = std::uint32_t(out.segments.size());
+      out.junctions.push_back(j);
+      out.segments.push_back({high, true, x, x, zl, zr});
+      j.z = zr;
+      j.kind = junction_kind(0, dz, 1, sr);
+      j.element1 = pieces[high].element;
+      j.element2 = q.element;
+      j.b1 = bh;
+      j.b2 = br;
+    } else {
+      j.z = zr;
+      j.kind = junction_kind(1, sl, 1, sr);
+      j.b1 = bl;
+      j.b2 = br;
+    }
+    j.segment = std::uint32_t(out.segments.size());
+    out.junctions.push_back(j);
+    push(sp.piece, sp.x0, sp.x1);
+  }
+}
+
+namespace {
+
+void discretise_arc(const SlicePiece& pc, double s, double zs, double t, double zt, double tol,
+                    int depth, std::vector<Vec2>& points, std::vector<double>& lift) {
+  const double m = (zt - zs) / (t - s);
+  const double xm = argmax_tilted(pc, m, s, t);
+  const double dev = std::max(0.0, tip_z(pc, xm) - (zs + m * (xm - s)));
+  if (dev / std::sqrt(1 + m * m) <= tol || depth >= 60 || !(t - s > 1e-9)) {
+    points.emplace_back(s, zs);
+    lift.push_back(dev);
+    return;
+  }
+  // Split at the farthest point unless it hugs an end (near-vertical ends): then halve.
+  double x = xm;
+  if (!(x > s + 0.1 * (t - s) && x < t - 0.1 * (t - s))) x = 0.5 * (s + t);
+  const double zx = tip_z(pc, x);
+  discretise_arc(pc, s, zs, x, zx, tol, depth + 1, points, lift);
+  discretise_arc(pc, x, zx, t, zt, tol, depth + 1, points, lift);
+}
+
+}  // namespace
+
+void discretise_segment(const SlicePiece& piece, const CurveSegment& seg, double tolerance,
+                        std::vector<Vec2>& points, std::vector<double>& lift) {
+  if (seg.vertical || is_linear(piece) || !(seg.x0 < seg.x1)) {
+    points.emplace_back(seg.x0, seg.z0);
+    lift.push_back(0);
+    return;
+  }
+  discretise_arc(piece, seg.x0, seg.z0, seg.x1, seg.z1, tolerance, 0, points, lift);
+}
+
+}  // namespace ncpath
