@@ -1,0 +1,376 @@
+#include "engine/scan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "engine/offset_elements_build.hpp"
+#include "engine/parallel.hpp"
+#include "kernels/cutters/drop_cutter.hpp"
+#include "kernels/geom/tolerance.hpp"
+#include "kernels/scan/envelope.hpp"
+
+namespace ncpath {
+
+std::string validate(const ScanParams& p) {
+  std::ostringstream os;
+  if (!(std::isfinite(p.interval) && p.interval > 0))
+    os << "interval must be a positive number of mm, got " << p.interval;
+  else if (!(std::isfinite(p.tolerance) && p.tolerance > 0))
+    os << "tolerance must be a positive number of mm, got " << p.tolerance;
+  else if (!(std::isfinite(p.margin) && p.margin >= 0))
+    os << "margin must be >= 0 mm, got " << p.margin;
+  else if (p.floor_z && !std::isfinite(*p.floor_z))
+    os << "floor_z must be a finite number of mm";
+  else if (p.chunk_planes == 0)
+    os << "chunk_planes must be >= 1";
+  else if (p.rect) {
+    const auto& r = *p.rect;
+    if (!(std::isfinite(r[0]) && std::isfinite(r[1]) && std::isfinite(r[2]) &&
+          std::isfinite(r[3]) && r[2] >= r[0] && r[3] >= r[1]))
+      os << "rect must be [x_min, y_min, x_max, y_max] with x_max >= x_min and y_max >= y_min";
+  }
+  return os.str();
+}
+
+namespace {
+
+// One family's offset elements (in its frame: planes y = v, lines along x = u) and the index
+// that finds the elements reaching a plane.
+struct Family {
+  OffsetElements el;
+  PlaneIndex index;
+};
+
+// Everything one plane produces, in the family frame (u, tip z) at v.
+struct PlaneOut {
+  std::vector<SlicePiece> pieces;
+  PlaneCurve curve;
+  std::vector<Vec2> polyline;  // lifted, in increasing u, end point included
+  std::vector<std::uint8_t> contact;
+  EnvelopeCounters counters;
+};
+
+ContactKind contact_of(const OffsetElements& el, std::uint32_t e) {
+  if (e == kNoElement) return ContactKind::kNone;
+  if (e < el.facet_count()) return ContactKind::kFacet;
+  if (e < el.facet_count() + el.edge_count()) return ContactKind::kEdge;
+  return ContactKind::kVertex;
+}
+
+ScanElementRef element_ref(const OffsetElements& el, std::uint32_t e) {
+  ScanElementRef r;
+  if (e == kNoElement) return r;
+  if (e < el.facet_count()) return {0, el.facet_source[e], -1};
+  e -= std::uint32_t(el.facet_count());
+  if (e < el.edge_count()) return {1, el.edge_vertices[e][0], el.edge_vertices[e][1]};
+  e -= std::uint32_t(el.edge_count());
+  return {2, el.vertex_source[e], -1};
+}
+
+// Pieces of the plane at v clipped to [u0, u1], plus the floor; envelope and curve.
+void scan_plane(const Family& fam, double v, double u0, double u1, double floor_z,
+                std::vector<std::uint32_t>& ids, PlaneOut& out) {
+  const double R = fam.el.radius;
+  ids.clear();
+  fam.index.query(v, ids);
+  out.pieces.clear();
+  for (std::uint32_t id : ids) slice_elements(fam.el, v, id, id + 1, out.pieces);
+  std::size_t k = 0;
+  for (SlicePiece& p : out.pieces) {
+    p.x0 = std::max(p.x0, u0);
+    p.x1 = std::min(p.x1, u1);
+    if (p.x0 < p.x1) out.pieces[k++] = p;
+  }
+  out.pieces.resize(k);
+  out.pieces.push_back(floor_piece(floor_z, R, v, u0, u1));
+  std::vector<EnvelopeSpan> spans;
+  upper_envelope(out.pieces, spans, &out.counters);
+  plane_curve(out.pieces, spans, out.curve);
+}
+
+// Polyline of the curve's segments clipped to [a, b], lifted (see discretise_segment).
+void polyline_between(const Family& fam, const PlaneOut& plane, double a, double b,
+                      double tolerance, std::vector<Vec2>& pts, std::vector<std::uint8_t>& contact) {
+  std::vector<Vec2> raw;
+  std::vector<double> lift;
+  std::vector<std::uint8_t> kinds;
+  const auto& segs = plane.curve.segments;
+  for (const CurveSegment& s : segs) {
+    if (s.x1 < a || s.x0 > b || (s.vertical && (s.x0 <= a || s.x0 > b))) continue;
+    CurveSegment c = s;
+    const SlicePiece& pc = plane.pieces[s.piece];
+    if (!s.vertical) {
+      c.x0 = std::max(s.x0, a);
+      c.x1 = std::min(s.x1, b);
+      if (!(c.x0 < c.x1)) continue;
+      c.z0 = tip_z(pc, c.x0);
+      c.z1 = tip_z(pc, c.x1);
+    }
+    const std::size_t before = raw.size();
+    discretise_segment(pc, c, tolerance, raw, lift);
+    kinds.resize(raw.size(), std::uint8_t(contact_of(fam.el, pc.element)));
+    (void)before;
+  }
+  // End point: the last segment's end (clipped).
+  for (auto it = segs.rbegin(); it != segs.rend(); ++it) {
+    if (it->vertical || it->x0 > b || it->x1 < a) continue;
+    const double x = std::min(it->x1, b);
+    raw.emplace_back(x, tip_z(plane.pieces[it->piece], x));
+    lift.push_back(0);
+    kinds.push_back(std::uint8_t(contact_of(fam.el, plane.pieces[it->piece].element)));
+    break;
+  }
+  pts.resize(raw.size());
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const double l = std::max(lift[i], i > 0 ? lift[i - 1] : 0.0);
+    pts[i] = Vec2(raw[i].x(), raw[i].y() + l);
+  }
+  contact = std::move(kinds);
+}
+
+std::array<double, 5> segment_geometry(const SlicePiece& pc, const CurveSegment& s) {
+  std::array<double, 5> g{};
+  const double R = pc.radius;
+  if (s.vertical) {
+    g[0] = s.x0;
+    return g;
+  }
+  double slope = 0, intercept = 0;
+  SectionEllipse e;
+  if (line_of(pc, slope, intercept)) {
+    g = {slope, intercept - R, 0, 0, 0};
+  } else if (pc.kind == PieceKind::kSphereArc) {
+    const double d = pc.point.y() - pc.y0;
+    g = {pc.point.x(), pc.point.z() - R, std::sqrt(std::max(0.0, (R - d) * (R + d))), 0, 0};
+  } else if (ellipse_of(pc, e)) {
+    g = {e.centre.x(), e.centre.y() - R, e.major, e.minor,
+         std::atan2(e.major_axis.y(), e.major_axis.x())};
+  }
+  return g;
+}
+
+}  // namespace
+
+ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanParams& p,
+                   const std::function<void(const ScanChunk&)>& sink, RunControl& control) {
+  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
+  if (cutter.type != CutterType::kBall)
+    throw std::invalid_argument("tool: curve-based scanning needs a ball-end mill");
+  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
+  ScanStats st;
+  const double R = cutter.radius;
+
+  // Both families' elements: the second is needed for the side links even for one family.
+  Stopwatch el_clock;
+  std::array<Family, 2> fam;
+  fam[0].el = build_offset_elements_parallel(mesh, R, false);
+  if (fam[0].el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
+  fam[1].el = build_offset_elements_parallel(mesh, R, true);
+  for (Family& f : fam) f.index = build_plane_index(f.el);
+  st.elements_s = el_clock.seconds();
+  st.facets = fam[0].el.facet_count();
+  st.edges = fam[0].el.edge_count();
+  st.vertices = fam[0].el.vertex_count();
+  st.facets_degenerate = mesh.facets.size() - st.facets;
+
+  const Aabb3 box = bounding_box(mesh);
+  std::array<double, 4> rect = p.rect.value_or(std::array<double, 4>{
+      box.lo.x() - p.margin, box.lo.y() - p.margin, box.hi.x() + p.margin, box.hi.y() + p.margin});
+  st.rect = rect;
+  st.floor_z = p.floor_z.value_or(box.lo.z());
+
+  struct FamilyRun {
+    int f;  // 0: x lines (planes y = v), 1: y lines (planes x = v)
+    double u0, u1, v0;
+    std::size_t planes;
+    std::int64_t first_path;  // cut path index of its first line
+  };
+  std::vector<FamilyRun> runs;
+  std::int64_t paths = 0;
+  for (int f : {0, 1}) {
+    if ((f == 0 && p.families == ScanFamilies::kY) || (f == 1 && p.families == ScanFamilies::kX))
+      continue;
+    FamilyRun r{f, f == 0 ? rect[0] : rect[1], f == 0 ? rect[2] : rect[3],
+                f == 0 ? rect[1] : rect[0], 0, paths};
+    const double extent = f == 0 ? rect[3] - rect[1] : rect[2] - rect[0];
+    r.planes = std::size_t(std::floor(extent / p.interval + tol::kCountSlack)) + 1;
+    paths += std::int64_t(r.planes);
+    (f == 0 ? st.planes_x : st.planes_y) = r.planes;
+    runs.push_back(r);
+  }
+  st.planes = st.planes_x + st.planes_y;
+  const std::uint64_t total_planes = st.planes;
+  std::uint64_t done_planes = 0;
+
+  for (std::size_t ri = 0; ri < runs.size(); ++ri) {
+    const FamilyRun& run = runs[ri];
+    const Family& F = fam[run.f];
+    const Family& S = fam[1 - run.f];  // side planes: the other family at u0 and u1
+    const double v_last = run.v0 + double(run.planes - 1) * p.interval;
+    const auto world = [&](double u, double v, double z) {
+      return run.f == 0 ? std::array<double, 3>{u, v, z} : std::array<double, 3>{v, u, z};
+    };
+    const auto world_vec = [&](const Vec3& b) {
+      return run.f == 0 ? std::array<double, 3>{b.x(), b.y(), b.z()}
+                        : std::array<double, 3>{b.y(), b.x(), b.z()};
+    };
+    // Side curves (in S's frame: planes at u, parameter v).
+    std::array<PlaneOut, 2> side;
+    {
+      std::vector<std::uint32_t> ids;
+      scan_plane(S, run.u0, run.v0, v_last, st.floor_z, ids, side[0]);
+      scan_plane(S, run.u1, run.v0, v_last, st.floor_z, ids, side[1]);
+    }
+
+    struct LineOut {
+      ScanChunk chunk;
+      std::uint64_t pieces = 0, decisions = 0, crossings = 0, cut = 0, link = 0;
+      std::uint64_t kinds[3] = {0, 0, 0};
+    };
+    auto run_line = [&](std::size_t i, LineOut& out) {
+      const double v = run.v0 + double(i) * p.interval;
+      PlaneOut plane;
+      std::vector<std::uint32_t> ids;
+      scan_plane(F, v, run.u0, run.u1, st.floor_z, ids, plane);
+      out.pieces += plane.pieces.size();
+      out.decisions += plane.counters.decisions;
+      out.crossings += plane.counters.crossings;
+      std::vector<Vec2> pts;
+      std::vector<std::uint8_t> contact;
+      polyline_between(F, plane, run.u0, run.u1, p.tolerance, pts, contact);
+      const bool forward = i % 2 == 0;
+      if (!forward) {
+        std::reverse(pts.begin(), pts.end());
+        std::reverse(contact.begin(), contact.end());
+      }
+      ScanChunk& ch = out.chunk;
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        const auto w = world(pts[k].x(), v, pts[k].y());
+        ch.cl.xyz.insert(ch.cl.xyz.end(), w.begin(), w.end());
+      }
+      ch.cl.contact.insert(ch.cl.contact.end(), contact.begin(), contact.end());
+      ch.cl.path_sizes.push_back(std::uint32_t(pts.size()));
+      ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kCut));
+      out.cut += pts.size();
+      // Exact segments and junctions, in cutting order.
+      const std::int64_t path = run.first_path + std::int64_t(i);
+      const auto& segs = plane.curve.segments;
+      for (std::size_t k = 0; k < segs.size(); ++k) {
+        const CurveSegment& s = segs[forward ? k : segs.size() - 1 - k];
+        const SlicePiece& pc = plane.pieces[s.piece];
+        ScanSegmentRecord rec;
+        rec.path = path;
+        rec.kind = s.vertical ? kScanSegmentVertical : std::uint8_t(pc.kind);
+        rec.element = element_ref(F.el, pc.element);
+        rec.start = world(s.x0, v, s.z0);
+        rec.end = world(s.x1, v, s.z1);
+        if (!forward) std::swap(rec.start, rec.end);
+        rec.geometry = segment_geometry(pc, s);
+        ch.segments.push_back(rec);
+      }
+      const auto& js = plane.curve.junctions;
+      for (std::size_t k = 0; k < js.size(); ++k) {
+        const CurveJunction& j = js[forward ? k : js.size() - 1 - k];
+        ScanJunctionRecord rec;
+        rec.path = path;
+        rec.kind = std::uint8_t(j.kind);
+        rec.position = world(j.x, v, j.z);
+        rec.b1 = world_vec(forward ? j.b1 : j.b2);
+        rec.b2 = world_vec(forward ? j.b2 : j.b1);
+        rec.element1 = element_ref(F.el, forward ? j.element1 : j.element2);
+        rec.element2 = element_ref(F.el, forward ? j.element2 : j.element1);
+        rec.angle = std::acos(std::clamp(j.b1.dot(j.b2), -1.0, 1.0));
+        ch.junctions.push_back(rec);
+        ++out.kinds[std::size_t(j.kind)];
+      }
+      if (i + 1 == run.planes) return;
+      // Link at depth along the side to the next line: the side plane's exact curve.
+      const PlaneOut& sp = side[forward ? 1 : 0];
+      std::vector<Vec2> lpts;
+      std::vector<std::uint8_t> lcontact;
+      polyline_between(S, sp, v, v + p.interval, p.tolerance, lpts, lcontact);
+      const double u = forward ? run.u1 : run.u0;
+      for (const Vec2& q : lpts) {
+        const auto w = world(u, q.x(), q.y());
+        ch.cl.xyz.insert(ch.cl.xyz.end(), w.begin(), w.end());
+      }
+      ch.cl.contact.insert(ch.cl.contact.end(), lcontact.begin(), lcontact.end());
+      ch.cl.path_sizes.push_back(std::uint32_t(lpts.size()));
+      ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kLinkAtDepth));
+      out.link += lpts.size();
+    };
+
+    // Chunks of planes computed in parallel while the previous chunk goes to the sink.
+    const std::size_t per_chunk = p.chunk_planes;
+    std::vector<LineOut> outs;
+    auto compute_chunk = [&](std::size_t c0, ScanChunk& merged) {
+      const std::size_t c1 = std::min(run.planes, c0 + per_chunk);
+      outs.assign(c1 - c0, LineOut{});
+      par::for_each(c1 - c0, 1, [&](std::size_t k) { run_line(c0 + k, outs[k]); });
+      merged.cl.clear();
+      merged.segments.clear();
+      merged.junctions.clear();
+      for (LineOut& o : outs) {
+        merged.cl.append(o.chunk.cl);
+        merged.segments.insert(merged.segments.end(), o.chunk.segments.begin(),
+                               o.chunk.segments.end());
+        merged.junctions.insert(merged.junctions.end(), o.chunk.junctions.begin(),
+                                o.chunk.junctions.end());
+        st.pieces += o.pieces;
+        st.decisions += o.decisions;
+        st.crossings += o.crossings;
+        st.cut_points += o.cut;
+        st.link_points += o.link;
+        st.convex += o.kinds[0];
+        st.sharp_concave += o.kinds[1];
+        st.tangent += o.kinds[2];
+        st.segments += o.chunk.segments.size();
+        st.junctions += o.chunk.junctions.size();
+      }
+    };
+    ScanChunk ready, next;
+    {
+      Stopwatch clock;
+      compute_chunk(0, ready);
+      st.compute_s += clock.seconds();
+    }
+    if (ri > 0) {
+      // Between families: a rapid from the last line's end to this family's first point.
+      ScanChunk hop;
+      const auto& xyz = ready.cl.xyz;
+      hop.cl.xyz = {xyz[0], xyz[1], xyz[2]};
+      hop.cl.contact = {ready.cl.contact[0]};
+      hop.cl.path_sizes = {1};
+      hop.cl.path_kinds = {std::uint8_t(PathKind::kRapid)};
+      sink(hop);
+    }
+    for (std::size_t c0 = 0; c0 < run.planes; c0 += per_chunk) {
+      if (control.cancel.load()) throw Cancelled{};
+      const std::size_t n0 = c0 + per_chunk;
+      double background_s = 0, sink_s = 0;
+      par::overlap(
+          [&] {
+            if (n0 >= run.planes) return;
+            Stopwatch clock;
+            compute_chunk(n0, next);
+            background_s = clock.seconds();
+          },
+          [&] {
+            Stopwatch clock;
+            sink(ready);
+            sink_s = clock.seconds();
+          });
+      st.compute_s += background_s;
+      st.sink_s += sink_s;
+      std::swap(ready, next);
+      done_planes += std::min(run.planes, n0) - c0;
+      if (control.progress) control.progress(done_planes, total_planes);
+    }
+  }
+  return st;
+}
+
+}  // namespace ncpath
