@@ -75,10 +75,11 @@ int main(int argc, char** argv) {
                 st.planes / st.compute_s, st.segments / st.compute_s,
                 peak_rss_bytes() / 1048576.0);
     std::printf("          junctions %llu (sharp concave %llu, tangent %llu, convex %llu), "
-                "pieces/plane %.0f, decisions/plane %.0f\n",
+                "pieces/plane %.0f (linear %.0f, hidden curved %.0f), decisions/plane %.0f\n",
                 (unsigned long long)st.junctions, (unsigned long long)st.sharp_concave,
                 (unsigned long long)st.tangent, (unsigned long long)st.convex,
-                double(st.pieces) / st.planes, double(st.decisions) / st.planes);
+                double(st.pieces) / st.planes, double(st.linear_pieces) / st.planes,
+                double(st.hidden) / st.planes, double(st.decisions) / st.planes);
     if (no_raster) continue;
     // Raster at the same accuracy: adaptive sampling to the same tolerance, both families.
     double seconds = 0;

@@ -10,18 +10,38 @@
 
 namespace ncpath {
 
+std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& v) {
+  std::vector<std::uint32_t> order(v.size());
+  std::iota(order.begin(), order.end(), 0u);
+  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const Vec3 &p = v[a], &q = v[b];
+    if (p.x() != q.x()) return p.x() < q.x();
+    if (p.y() != q.y()) return p.y() < q.y();
+    if (p.z() != q.z()) return p.z() < q.z();
+    return a < b;
+  });
+  std::vector<std::uint32_t> rep(v.size());
+  for (std::size_t k = 0; k < order.size(); ++k)
+    rep[order[k]] = k > 0 && v[order[k]] == v[order[k - 1]] ? rep[order[k - 1]] : order[k];
+  return rep;
+}
+
 OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double radius,
                                               bool swap_xy) {
-  TriangleMesh swapped;
-  if (swap_xy) {
-    swapped.facets = input.facets;
-    swapped.vertices.resize(input.vertices.size());
-    par::for_each(input.vertices.size(), 4096, [&](std::size_t i) {
-      const Vec3& v = input.vertices[i];
-      swapped.vertices[i] = Vec3(v.y(), v.x(), v.z());
-    });
-  }
-  const TriangleMesh& mesh = swap_xy ? swapped : input;
+  // Welded copy (facets remapped to the first of exactly equal vertices), x and y swapped
+  // when asked.
+  TriangleMesh mesh;
+  mesh.vertices.resize(input.vertices.size());
+  par::for_each(input.vertices.size(), 4096, [&](std::size_t i) {
+    const Vec3& v = input.vertices[i];
+    mesh.vertices[i] = swap_xy ? Vec3(v.y(), v.x(), v.z()) : v;
+  });
+  const std::vector<std::uint32_t> rep = exact_duplicate_map(input.vertices);
+  mesh.facets.resize(input.facets.size());
+  par::for_each(input.facets.size(), 16384, [&](std::size_t i) {
+    const auto& f = input.facets[i];
+    mesh.facets[i] = {rep[f[0]], rep[f[1]], rep[f[2]]};
+  });
   OffsetElements el;
   el.radius = radius;
   el.points = mesh.vertices;
@@ -70,11 +90,27 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
   el.edge_kind.resize(ne);
   el.edge_facet_count.resize(ne);
   el.edge_reachable.resize(ne);
+  el.edge_wedge.resize(ne);
+  el.edge_flat.resize(ne);
   par::for_ranges(ne, 16384, [&](std::size_t b, std::size_t e) {
     classify_edges(sorted, key_facet, edge_start, std::uint32_t(b), std::uint32_t(e), el);
   });
 
   collect_vertices(el);
+  return el;
+}
+
+OffsetElements mirror_xy(const OffsetElements& in) {
+  OffsetElements el = in;
+  auto swap = [](Vec3& v) { v = Vec3(v.y(), v.x(), v.z()); };
+  par::for_each(el.points.size(), 16384, [&](std::size_t i) { swap(el.points[i]); });
+  par::for_each(el.facet_tri.size(), 16384, [&](std::size_t i) {
+    for (Vec3& p : el.facet_tri[i]) swap(p);
+    swap(el.facet_normal[i]);
+  });
+  par::for_each(el.edge_wedge.size(), 16384, [&](std::size_t i) {
+    for (Vec3& w : el.edge_wedge[i]) swap(w);
+  });
   return el;
 }
 
@@ -87,42 +123,28 @@ void PlaneIndex::query(double v, std::vector<std::uint32_t>& out) const {
 }
 
 PlaneIndex build_plane_index(const OffsetElements& el) {
-  const double R = el.radius;
   const std::size_t n = el.element_count();
   std::vector<double> lo(n, INFINITY), hi(n, -INFINITY);
-  const std::size_t nf = el.facet_count(), ne = el.edge_count();
   par::for_each(n, 16384, [&](std::size_t id) {
-    if (!element_reachable(el, std::uint32_t(id))) return;
-    if (id < nf) {
-      const auto& t = el.facet_tri[id];
-      lo[id] = std::min({t[0].y(), t[1].y(), t[2].y()});
-      hi[id] = std::max({t[0].y(), t[1].y(), t[2].y()});
-    } else if (id < nf + ne) {
-      const auto& ev = el.edge_vertices[id - nf];
-      const Vec3 &a = el.points[ev[0]], &b = el.points[ev[1]];
-      const Vec3 d = b - a;
-      const double len = d.norm();
-      if (!(len > 0) || std::hypot(d.x(), d.y()) < tol::kVerticalEdge * len) return;
-      lo[id] = std::min(a.y(), b.y()) - R;
-      hi[id] = std::max(a.y(), b.y()) + R;
-    } else {
-      const double y = el.points[el.vertex_source[id - nf - ne]].y();
-      lo[id] = y - R;
-      hi[id] = y + R;
+    double l, h;
+    if (element_y_reach(el, std::uint32_t(id), l, h)) {
+      lo[id] = l;
+      hi[id] = h;
     }
   });
-  // Short: at most twice the median extent of the facets plus 2R (edges and vertices reach
-  // R beyond their own extent); the rest are long.
+  // Short: up to the 99.9th percentile of the extents (sampled over all elements); the
+  // longest 0.1 % (big facets, untrimmed cylinders) are long and checked for every plane.
   std::vector<double> ext;
-  for (std::size_t id = 0; id < nf; id += std::max<std::size_t>(1, nf / 4096))
+  for (std::size_t id = 0; id < n; id += std::max<std::size_t>(1, n / 65536))
     if (lo[id] <= hi[id]) ext.push_back(hi[id] - lo[id]);
-  double median = 0;
+  double limit = 0;
   if (!ext.empty()) {
-    std::nth_element(ext.begin(), ext.begin() + std::ptrdiff_t(ext.size() / 2), ext.end());
-    median = ext[ext.size() / 2];
+    const auto k = std::ptrdiff_t(std::min(ext.size() - 1, ext.size() * 999 / 1000));
+    std::nth_element(ext.begin(), ext.begin() + k, ext.end());
+    limit = ext[std::size_t(k)];
   }
   PlaneIndex ix;
-  ix.short_extent = 2 * R + 4 * median;
+  ix.short_extent = limit;
   std::vector<std::uint32_t> order;
   for (std::uint32_t id = 0; id < n; ++id) {
     if (!(lo[id] <= hi[id])) continue;

@@ -9,17 +9,28 @@
 
 namespace ncpath {
 
-// Same elements, in the same order, as build_offset_elements (the sequential reference),
-// built with count/scan/fill over chunks of facets, a parallel sort of the half-edge keys
-// and parallel edge classification. swap_xy: build them for the mesh with x and y exchanged
-// (the frame of planes x = const); element ids are the same either way.
+// For every vertex, the lowest index of the vertices with exactly the same coordinates.
+std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& vertices);
+
+// The elements build_offset_elements (the sequential reference) gives for the mesh welded
+// at exactly equal vertices (facets refer to the lowest index of each group: an STL soup
+// becomes connected, so its edges are classified and its duplicates vanish), built with
+// count/scan/fill over chunks of facets, parallel sorts and parallel edge classification.
+// swap_xy: build them for the mesh with x and y exchanged (the frame of planes x = const);
+// element ids are the same either way.
 OffsetElements build_offset_elements_parallel(const TriangleMesh& mesh, double radius,
                                               bool swap_xy);
 
-// The extent of every element across the planes (y): an offset triangle's y range, an
-// edge's y range grown by R, a vertex's y +- R. Vertical facets and vertical edges are left
-// out (they give no piece). Elements no longer than `short_extent` are sorted by their low
-// end; the longer ones are kept apart and checked for every plane.
+// The same elements with x and y exchanged in every position and direction (a mirror: the
+// edge wedges, rings and kinds are unchanged), i.e. the elements of the swapped mesh without
+// building them again.
+OffsetElements mirror_xy(const OffsetElements& el);
+
+// The extent of every element across the planes (y) that its trimmed pieces can reach
+// (element_y_reach: an offset triangle's y range; an edge's or vertex's y range grown by R
+// times the y reach of its cone). Unreachable and vertical elements are left out (they give
+// no piece). Elements up to the 99.9th percentile of the extents (`short_extent`) are sorted
+// by their low end; the longer ones are kept apart and checked for every plane.
 struct PlaneIndex {
   std::vector<double> lo, hi;          // short elements, sorted by (lo, id)
   std::vector<std::uint32_t> ids;

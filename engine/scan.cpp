@@ -168,8 +168,9 @@ ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanPar
   std::array<Family, 2> fam;
   fam[0].el = build_offset_elements_parallel(mesh, R, false);
   if (fam[0].el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
-  fam[1].el = build_offset_elements_parallel(mesh, R, true);
-  for (Family& f : fam) f.index = build_plane_index(f.el);
+  fam[1].el = mirror_xy(fam[0].el);
+  par::overlap([&] { fam[0].index = build_plane_index(fam[0].el); },
+               [&] { fam[1].index = build_plane_index(fam[1].el); });
   st.elements_s = el_clock.seconds();
   st.facets = fam[0].el.facet_count();
   st.edges = fam[0].el.edge_count();
@@ -227,7 +228,8 @@ ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanPar
 
     struct LineOut {
       ScanChunk chunk;
-      std::uint64_t pieces = 0, decisions = 0, crossings = 0, cut = 0, link = 0;
+      std::uint64_t pieces = 0, decisions = 0, crossings = 0, cut = 0, link = 0, hidden = 0;
+      std::uint64_t linear = 0;
       std::uint64_t kinds[3] = {0, 0, 0};
     };
     auto run_line = [&](std::size_t i, LineOut& out) {
@@ -238,6 +240,8 @@ ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanPar
       out.pieces += plane.pieces.size();
       out.decisions += plane.counters.decisions;
       out.crossings += plane.counters.crossings;
+      out.hidden += plane.counters.hidden;
+      for (const SlicePiece& pc : plane.pieces) out.linear += is_linear(pc);
       std::vector<Vec2> pts;
       std::vector<std::uint8_t> contact;
       polyline_between(F, plane, run.u0, run.u1, p.tolerance, pts, contact);
@@ -322,6 +326,8 @@ ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanPar
         st.pieces += o.pieces;
         st.decisions += o.decisions;
         st.crossings += o.crossings;
+        st.hidden += o.hidden;
+        st.linear_pieces += o.linear;
         st.cut_points += o.cut;
         st.link_points += o.link;
         st.convex += o.kinds[0];

@@ -98,6 +98,8 @@ struct ScanStats {
   std::uint64_t junctions = 0, sharp_concave = 0, convex = 0, tangent = 0;
   std::uint64_t cut_points = 0, link_points = 0;
   std::uint64_t decisions = 0, crossings = 0;  // envelope work
+  std::uint64_t hidden = 0;       // curved pieces under the facet lines (dropped early)
+  std::uint64_t linear_pieces = 0;  // facet lines, cylinder lines, the floor
   std::uint64_t facets = 0, edges = 0, vertices = 0;  // offset elements (one family)
   std::uint64_t facets_degenerate = 0;
   double floor_z = 0;

@@ -211,6 +211,19 @@ inline constexpr double kVerticalEdge = 1e-12;
 // are overlapped by those triangles by about R times the bend, far above rounding.
 inline constexpr double kFlatEdgeKeep = 1e-9;
 
+// Dimensionless (times R). A slice point of a cylinder or sphere counts as inside its
+// wedge / ring cone (the ball there would not cut into a facet) up to this much penetration.
+inline constexpr double kTrimSlack = 1e-12;
+
+// Dimensionless (times R). The slack of the trimming test at a nearly flat kept edge (and at
+// its vertices), whose wedge is (almost) empty: the kept strip around the common normal is
+// about this wide in direction, far wider than rounding, far narrower than a facet.
+inline constexpr double kFlatTrimSlack = 1e-7;
+
+// mm. A trimmed cylinder or sphere piece is grown by this into its trimmed-away part, so that
+// rounding never leaves a sliver between it and the offset triangle that takes over.
+inline constexpr double kTrimExtend = 1e-9;
+
 // ---- Upper envelope of a drive plane (kernels/scan/envelope) ----
 
 // mm. Two pieces within this of each other over an interval are tied there: the one with

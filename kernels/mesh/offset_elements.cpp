@@ -112,20 +112,134 @@ bool element_reachable(const OffsetElements& el, std::uint32_t id) {
   return el.vertex_reachable[id - nf - ne] != 0;
 }
 
+namespace {
+
+// Extreme y components of the unit directions d with d . w <= 0 for all w in ws (see
+// element_y_reach). False when there is none.
+bool cone_y_extent(std::span<const Vec3> ws, double slack, double& dy_min, double& dy_max) {
+  const double kIn = std::max(1e-9, 2 * slack);  // on a face counts as inside up to this
+  dy_min = INFINITY;
+  dy_max = -INFINITY;
+  auto consider = [&](const Vec3& d) {
+    const double n = d.norm();
+    if (!(n > 1e-12)) return;
+    const Vec3 u = d / n;
+    for (const Vec3& w : ws)
+      if (u.dot(w) > kIn * w.norm()) return;
+    dy_min = std::min(dy_min, u.y());
+    dy_max = std::max(dy_max, u.y());
+  };
+  const Vec3 ey(0, 1, 0);
+  consider(ey);
+  consider(-ey);
+  for (const Vec3& w : ws) {
+    const Vec3 wn = w.normalized();
+    consider(ey - wn * wn.y());
+    consider(-ey + wn * wn.y());
+  }
+  for (std::size_t i = 0; i < ws.size(); ++i)
+    for (std::size_t j = i + 1; j < ws.size(); ++j) {
+      const Vec3 c = ws[i].cross(ws[j]);
+      consider(c);
+      consider(-c);
+    }
+  return dy_min <= dy_max;
+}
+
+}  // namespace
+
+bool element_y_reach(const OffsetElements& el, std::uint32_t id, double& lo, double& hi) {
+  if (!element_reachable(el, id)) return false;
+  const double R = el.radius;
+  const std::size_t nf = el.facet_count(), ne = el.edge_count();
+  if (id < nf) {
+    const auto& t = el.facet_tri[id];
+    lo = std::min({t[0].y(), t[1].y(), t[2].y()});
+    hi = std::max({t[0].y(), t[1].y(), t[2].y()});
+    return true;
+  }
+  double dy_min = -1, dy_max = 1;
+  if (id < nf + ne) {
+    const std::size_t e = id - nf;
+    const auto& ev = el.edge_vertices[e];
+    const Vec3 &a = el.points[ev[0]], &b = el.points[ev[1]];
+    const Vec3 d = b - a;
+    const double len = d.norm();
+    if (!(len > 0) || std::hypot(d.x(), d.y()) < tol::kVerticalEdge * len) return false;
+    const Vec3 u = d / len;
+    const auto& wedge = el.edge_wedge[e];
+    const double slack = el.edge_flat[e] ? tol::kFlatTrimSlack : tol::kTrimSlack;
+    if (wedge[0].isZero()) {
+      const double s = std::sqrt(std::max(0.0, 1 - u.y() * u.y()));  // the whole circle
+      dy_min = -s;
+      dy_max = s;
+    } else {
+      // Directions perpendicular to u: add -u and u as constraints (d . u = 0).
+      const std::array<Vec3, 4> ws = {wedge[0], wedge[1], u, -u};
+      if (!cone_y_extent(ws, slack, dy_min, dy_max)) return false;
+    }
+    lo = std::min(a.y(), b.y()) + R * dy_min;
+    hi = std::max(a.y(), b.y()) + R * dy_max;
+  } else {
+    const std::size_t v = id - nf - ne;
+    const Vec3& c = el.points[el.vertex_source[v]];
+    const std::uint32_t r0 = el.ring_offsets.empty() ? 0 : el.ring_offsets[v];
+    const std::uint32_t r1 = el.ring_offsets.empty() ? 0 : el.ring_offsets[v + 1];
+    if (r1 > r0) {
+      std::array<Vec3, 32> ws;
+      const std::uint32_t n = std::min<std::uint32_t>(r1 - r0, 32);
+      for (std::uint32_t k = 0; k < n; ++k) ws[k] = el.points[el.ring[r0 + k]] - c;
+      const double slack = el.vertex_flat[v] ? tol::kFlatTrimSlack : tol::kTrimSlack;
+      if (r1 - r0 <= 32 &&
+          !cone_y_extent(std::span<const Vec3>(ws.data(), n), slack, dy_min, dy_max))
+        return false;
+      if (r1 - r0 > 32) {
+        dy_min = -1;
+        dy_max = 1;
+      }
+    }
+    lo = c.y() + R * dy_min;
+    hi = c.y() + R * dy_max;
+  }
+  const double pad = 1e-9 * R;
+  lo -= pad;
+  hi += pad;
+  return true;
+}
+
 void collect_vertices(OffsetElements& el) {
+  // used: 1 referenced, 2 reachable (an incident edge is), 4 a flat kept edge.
   std::vector<std::uint8_t> used(el.points.size(), 0);
   for (const auto& fv : el.facet_vertices)
     for (std::uint32_t v : fv) used[v] = 1;
-  for (std::size_t e = 0; e < el.edge_count(); ++e)
-    if (el.edge_reachable[e])
-      for (std::uint32_t v : el.edge_vertices[e]) used[v] = 2;
+  for (std::size_t e = 0; e < el.edge_count(); ++e) {
+    if (!el.edge_reachable[e]) continue;
+    for (std::uint32_t v : el.edge_vertices[e]) used[v] |= el.edge_flat[e] ? 6 : 2;
+  }
   el.vertex_source.clear();
   el.vertex_reachable.clear();
+  el.vertex_flat.clear();
+  std::vector<std::uint32_t> slot(el.points.size(), ~0u);
   for (std::uint32_t v = 0; v < used.size(); ++v)
     if (used[v]) {
+      slot[v] = std::uint32_t(el.vertex_source.size());
       el.vertex_source.push_back(v);
-      el.vertex_reachable.push_back(used[v] == 2);
+      el.vertex_reachable.push_back((used[v] & 2) != 0);
+      el.vertex_flat.push_back((used[v] & 4) != 0);
     }
+  // Rings (count, scan, fill) of reachable vertices.
+  const std::size_t nv = el.vertex_source.size();
+  auto ringed = [&](std::uint32_t v) { return (used[v] & 2) != 0; };
+  el.ring_offsets.assign(nv + 1, 0);
+  for (const auto& ev : el.edge_vertices)
+    for (int k = 0; k < 2; ++k)
+      if (ringed(ev[k])) ++el.ring_offsets[slot[ev[k]] + 1];
+  for (std::size_t i = 0; i < nv; ++i) el.ring_offsets[i + 1] += el.ring_offsets[i];
+  el.ring.resize(el.ring_offsets[nv]);
+  std::vector<std::uint32_t> fill(el.ring_offsets.begin(), el.ring_offsets.end() - 1);
+  for (const auto& ev : el.edge_vertices)
+    for (int k = 0; k < 2; ++k)
+      if (ringed(ev[k])) el.ring[fill[slot[ev[k]]]++] = ev[1 - k];
 }
 
 void classify_edges(std::span<const std::uint64_t> sorted_keys,
@@ -140,6 +254,8 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
     out.edge_facet_count[e] = i1 - i0;
     EdgeKind kind;
     bool reachable = true;
+    std::array<Vec3, 2> wedge = {Vec3::Zero(), Vec3::Zero()};
+    bool flat_edge = false;
     if (i1 - i0 == 1) {
       kind = EdgeKind::kBoundary;
     } else if (i1 - i0 > 2) {
@@ -155,6 +271,10 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
         w1 -= e * e.dot(w1);
         w2 -= e * e.dot(w2);
         reachable = edge_wedge_reachable(e, w1, w2);
+        const double n1 = w1.norm(), n2 = w2.norm();
+        const bool flat = std::abs(e.dot(w1.cross(w2))) <= tol::kFlatEdgeKeep * n1 * n2;
+        if (reachable && n1 > 0 && n2 > 0) wedge = {w1 / n1, w2 / n2};
+        flat_edge = flat;
       }
       const double s1 = opposite_height(out, f1, f2, lo, hi);
       const double s2 = opposite_height(out, f2, f1, lo, hi);
@@ -169,6 +289,8 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
     }
     out.edge_kind[e] = kind;
     out.edge_reachable[e] = reachable;
+    out.edge_wedge[e] = wedge;
+    out.edge_flat[e] = flat_edge;
   }
 }
 
@@ -207,6 +329,8 @@ OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius) {
   el.edge_kind.resize(ne);
   el.edge_facet_count.resize(ne);
   el.edge_reachable.resize(ne);
+  el.edge_wedge.resize(ne);
+  el.edge_flat.resize(ne);
   classify_edges(sorted, key_facet, edge_start, 0, ne, el);
   collect_vertices(el);
   return el;

@@ -74,11 +74,27 @@ struct OffsetElements {
   // 1 when the ball can touch the edge's interior from above without cutting into one of
   // its two facets (see edge_reachable below); boundary and non-manifold edges always.
   std::vector<std::uint8_t> edge_reachable;
+  // Unit directions w1, w2 from the edge into its two facets (perpendicular to it): a ball
+  // touching the edge along d (contact to centre) is on the envelope only if d . w1 <= 0 and
+  // d . w2 <= 0, so slices keep only that part of the cylinder. Zero when the edge has not
+  // two facets (then its whole cylinder is sliced).
+  std::vector<std::array<Vec3, 2>> edge_wedge;
+  // 1 for an edge kept as nearly flat (tol::kFlatEdgeKeep): its wedge is (almost) empty, so
+  // it is trimmed with the slack tol::kFlatTrimSlack instead, to a thin strip around the
+  // common normal that covers rounding slivers between the two offset triangles.
+  std::vector<std::uint8_t> edge_flat;
 
   // Spheres, V of them: indices into points. vertex_reachable: 0 when every edge at the
   // vertex is unreachable (its sphere then lies below the envelope too).
   std::vector<std::uint32_t> vertex_source;
   std::vector<std::uint8_t> vertex_reachable;
+  // The vertex's 1-ring (indices into points; CSR by vertex slot, V + 1 offsets): a ball
+  // touching only the vertex along d is on the envelope only if d . (q - v) <= 0 for every
+  // ring point q (else it cuts into a facet there), so slices keep only that part of the
+  // sphere. vertex_flat: 1 at a vertex with a nearly flat kept edge (trimmed with
+  // tol::kFlatTrimSlack, like the edge).
+  std::vector<std::uint32_t> ring_offsets, ring;
+  std::vector<std::uint8_t> vertex_flat;
 
   std::size_t facet_count() const { return facet_tri.size(); }
   std::size_t edge_count() const { return edge_vertices.size(); }
@@ -102,6 +118,16 @@ struct OffsetElements {
 // come from different normals. A vertex is unreachable when all its edges are (a pit or a
 // valley floor: a ball touching only the vertex would cut into a facet around it).
 bool element_reachable(const OffsetElements& el, std::uint32_t id);
+
+// The y extent [lo, hi] of the part of element `id` that can be on the envelope (mm): an
+// offset triangle's y range; for a cylinder, its edge's y range grown by R times the
+// extreme y components of the contact directions in its wedge (or in the whole circle
+// perpendicular to the edge); for a sphere, the vertex's y grown likewise over its ring cone
+// (the extremes of a linear function over a polyhedral cone on the unit sphere lie at its
+// centre direction, on one face or on an edge of the cone, so a few candidates decide it).
+// Drive planes y = v outside [lo, hi] get no piece from the trimmed element. False when the
+// element can give no piece at all (unreachable, vertical, empty cone).
+bool element_y_reach(const OffsetElements& el, std::uint32_t id, double& lo, double& hi);
 
 // The wedge test above for the edge from a along unit direction e, with w1 and w2 pointing
 // from it into the two facets (any lengths).
@@ -130,7 +156,8 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
                     std::span<const std::uint32_t> edge_start, std::uint32_t begin,
                     std::uint32_t end, OffsetElements& out, double flat_sine = tol::kEdgeFlatSine);
 
-// vertex_source and vertex_reachable from facet_vertices, edge_vertices, edge_reachable.
+// vertex_source, vertex_reachable and the rings from facet_vertices, edge_vertices,
+// edge_reachable and edge_wedge.
 void collect_vertices(OffsetElements& el);
 
 // Sequential reference build: facets, then unique edges (sorted by their vertex pair), then

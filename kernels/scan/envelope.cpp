@@ -87,7 +87,30 @@ class Merger {
 
   void resolve(std::uint32_t p, std::uint32_t q, double s, double t) {
     if (before(q, p)) std::swap(p, q);
+    if (same_curve(pc_[p], pc_[q])) return emit(p, s, t);
+    budget_ = kDecisionBudget;
     decide(p, q, s, t, 0);
+  }
+
+  // Two pieces on the same circle or ellipse (within the tie): duplicated vertices or edges.
+  // Their difference is below the tie everywhere, but the chord bounds only prove it on tiny
+  // intervals, so they are settled here.
+  bool same_curve(const SlicePiece& a, const SlicePiece& b) const {
+    if (is_linear(a) || is_linear(b)) return false;  // lines are settled exactly anyway
+    SectionEllipse ea, eb;
+    if (a.kind == PieceKind::kSphereArc || b.kind == PieceKind::kSphereArc) {
+      if (a.kind != b.kind) return false;
+      const double da = a.point.y() - a.y0, db = b.point.y() - b.y0;
+      const double ra = std::sqrt(std::max(0.0, (a.radius - da) * (a.radius + da)));
+      const double rb = std::sqrt(std::max(0.0, (b.radius - db) * (b.radius + db)));
+      return std::abs(a.point.x() - b.point.x()) <= tie_ &&
+             std::abs(a.point.z() - b.point.z()) <= tie_ && std::abs(ra - rb) <= tie_;
+    }
+    if (!ellipse_of(a, ea) || !ellipse_of(b, eb)) return false;
+    return (ea.centre - eb.centre).norm() <= tie_ && std::abs(ea.major - eb.major) <= tie_ &&
+           std::abs(ea.minor - eb.minor) <= tie_ &&
+           std::abs(ea.major_axis.x() * eb.major_axis.y() - ea.major_axis.y() * eb.major_axis.x()) *
+                   ea.major <= tie_;
   }
 
   // A wins ties (A before B). Emits the spans of [s, t] left to right.
@@ -107,8 +130,11 @@ class Merger {
     const double high = std::max({centre_z(a, x2) - (bs + mb * (x2 - s)), ds, dt});
     if (high <= 0) return emit(B, s, t);
     const double xm = 0.5 * (s + t);
-    if (w <= tol::kEnvelopeMinWidth || depth >= 200 || !(s < xm && xm < t))
+    if (w <= tol::kEnvelopeMinWidth || depth >= 200 || !(s < xm && xm < t) || budget_ <= 0) {
+      if (budget_ <= 0) ++cnt_.unsettled;
       return emit(diff(A, B, xm) >= -tie_ ? A : B, s, t);
+    }
+    --budget_;
     if ((ds < 0 && dt > 0) || (ds > 0 && dt < 0)) {
       const double r = crossing(A, B, s, t, ds, dt);
       if (s < r && r < t) {
@@ -149,8 +175,13 @@ class Merger {
     return std::abs(ds) <= std::abs(dt) ? s : t;
   }
 
+  // Interval splits allowed per pair of spans; beyond it intervals are decided at their
+  // midpoints and counted (EnvelopeCounters::unsettled). Never reached in the tests.
+  static constexpr int kDecisionBudget = 4096;
+
   std::span<const SlicePiece> pc_;
   double tie_;
+  int budget_ = kDecisionBudget;
   EnvelopeCounters& cnt_;
   std::vector<EnvelopeSpan>* out_ = nullptr;
 };
@@ -178,21 +209,85 @@ Vec2 direction(double dx, double dz) {
 
 }  // namespace
 
+namespace {
+
+// True when curved piece q is certified to lie within `tie` below the envelope `spans`
+// everywhere on its range: against a line exactly (q - line is concave: its maximum is at
+// argmax_tilted), against a curved span by its chord (the span lies above its chord, so
+// q <= chord + tie suffices). False may also mean "not certified".
+bool hidden_by(const SlicePiece& q, std::span<const SlicePiece> pieces,
+               const std::vector<EnvelopeSpan>& spans, double tie) {
+  auto it = std::upper_bound(spans.begin(), spans.end(), q.x0,
+                             [](double x, const EnvelopeSpan& s) { return x < s.x1; });
+  double covered = q.x0;
+  for (; it != spans.end() && it->x0 < q.x1; ++it) {
+    if (it->x0 > covered) return false;  // a gap: nothing below to hide q
+    const double a = std::max(q.x0, it->x0), b = std::min(q.x1, it->x1);
+    const SlicePiece& l = pieces[it->piece];
+    const double la = centre_z(l, a);
+    const double m = b > a ? (centre_z(l, b) - la) / (b - a) : 0.0;
+    const double x = argmax_tilted(q, m, a, b);
+    if (centre_z(q, x) - (la + m * (x - a)) > tie) return false;
+    covered = it->x1;
+  }
+  return covered >= q.x1;
+}
+
+}  // namespace
+
 void upper_envelope(std::span<const SlicePiece> pieces, std::vector<EnvelopeSpan>& out,
                     EnvelopeCounters* counters, double tie) {
   out.clear();
   if (pieces.empty()) return;
-  std::vector<std::uint32_t> order(pieces.size());
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+  auto by_x = [&](std::uint32_t a, std::uint32_t b) {
     const SlicePiece &pa = pieces[a], &pb = pieces[b];
     if (pa.x0 != pb.x0) return pa.x0 < pb.x0;
     if (pa.element != pb.element) return pa.element < pb.element;
     return a < b;
-  });
+  };
+  // Linear pieces first (facet lines, the floor: cheap, exact decisions). Then the curved
+  // pieces they do not hide: the highest ones (by peak) first, which on a part are the
+  // blends of its top surface; what that envelope certifiably hides (the far side of the
+  // part, blends under blends) is dropped, and the rest merged in.
+  std::vector<std::uint32_t> lines, curved;
+  for (std::uint32_t i = 0; i < pieces.size(); ++i)
+    (is_linear(pieces[i]) ? lines : curved).push_back(i);
+  std::sort(lines.begin(), lines.end(), by_x);
   EnvelopeCounters local;
-  Merger m(pieces, tie, counters ? *counters : local);
-  out = envelope_of(m, pieces, order);
+  EnvelopeCounters& cnt = counters ? *counters : local;
+  Merger m(pieces, tie, cnt);
+  std::vector<EnvelopeSpan> env;
+  if (!lines.empty()) env = envelope_of(m, pieces, lines);
+  auto drop_hidden = [&](std::vector<std::uint32_t>& ids) {
+    if (!env.empty())
+      cnt.hidden += std::erase_if(
+          ids, [&](std::uint32_t i) { return hidden_by(pieces[i], pieces, env, tie); });
+  };
+  auto merge_in = [&](std::vector<std::uint32_t>& ids) {
+    if (ids.empty()) return;
+    std::sort(ids.begin(), ids.end(), by_x);
+    std::vector<EnvelopeSpan> e = envelope_of(m, pieces, ids);
+    env = env.empty() ? std::move(e) : m.merge(env, e);
+  };
+  drop_hidden(curved);
+  const std::size_t first = 2 * lines.size() + 64;
+  if (curved.size() > first) {
+    std::vector<double> peak(pieces.size());
+    for (std::uint32_t i : curved) {
+      const SlicePiece& q = pieces[i];
+      peak[i] = centre_z(q, argmax_tilted(q, 0, q.x0, q.x1));
+    }
+    std::sort(curved.begin(), curved.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return peak[a] != peak[b] ? peak[a] > peak[b] : by_x(a, b);
+    });
+    std::vector<std::uint32_t> rest(curved.begin() + std::ptrdiff_t(first), curved.end());
+    curved.resize(first);
+    merge_in(curved);
+    drop_hidden(rest);
+    curved = std::move(rest);
+  }
+  merge_in(curved);
+  out = std::move(env);
 }
 
 JunctionKind junction_kind(double dx1, double dz1, double dx2, double dz2) {

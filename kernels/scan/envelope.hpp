@@ -11,7 +11,10 @@
 // chord's slope). Intervals that neither bound settles are split at a crossing (Illinois
 // root of A - B on a sign change) or in the middle; ties within tol::kEnvelopeTie go to the
 // piece with the lower element id, so the result does not depend on the order of pieces.
-// The envelope of all pieces is built by divide and conquer over the pieces sorted by x0.
+// The envelope of the linear pieces (facet lines, the floor) is built first, by divide and
+// conquer over the pieces sorted by x0; curved pieces that lie under it everywhere (exact
+// test: the maximum of the concave piece minus each line) are dropped, and the envelope of
+// the rest is merged in.
 //
 // Jumps: the drop-cutter height is discontinuous where the tool passes a vertical wall (it
 // falls from the wall's top edge to what lies below). The curve there gets a vertical
@@ -43,6 +46,8 @@ struct EnvelopeSpan {
 struct EnvelopeCounters {
   std::uint64_t decisions = 0;  // interval decisions between two pieces
   std::uint64_t crossings = 0;  // crossings located by root finding
+  std::uint64_t unsettled = 0;  // intervals decided at their midpoint after the split budget
+  std::uint64_t hidden = 0;     // curved pieces found under the linear pieces' envelope
 };
 
 // Upper envelope of `pieces` (ranges [x0, x1], any order): spans sorted by x, disjoint,

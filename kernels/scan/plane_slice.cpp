@@ -85,7 +85,46 @@ void slice_facet(const OffsetElements& el, std::uint32_t f, double y0,
   out.push_back(pc);
 }
 
-void slice_sphere(const OffsetElements& el, std::uint32_t v, double y0,
+// Emits the runs of consecutive valid intervals between sorted breakpoints bp[0..nb) as
+// pieces (copies of `proto` with their x range). state(x) at an interval's midpoint: 0 no
+// section there, 1 trimmed away (the ball would cut into a facet), 2 kept. A run is grown by
+// tol::kTrimExtend into a neighbouring trimmed interval, so that a trimmed end never leaves
+// a sliver next to the piece that takes over there (outside its kept part a piece lies
+// below the envelope, so growing it never changes the envelope).
+template <class State>
+void emit_runs(const double* bp, int nb, const SlicePiece& proto, State&& state,
+               std::vector<SlicePiece>& out) {
+  SlicePiece pc = proto;
+  int prev = 0;  // state of the interval before the open run
+  bool open = false;
+  for (int i = 0; i + 1 < nb; ++i) {
+    const double x0 = bp[i], x1 = bp[i + 1];
+    if (!(x0 < x1)) continue;
+    const int st = state(0.5 * (x0 + x1));
+    if (st == 2) {
+      if (!open) {
+        pc.x0 = prev == 1 ? std::max(x0 - tol::kTrimExtend, bp[i - 1]) : x0;
+        open = true;
+      }
+      pc.x1 = x1;
+    } else {
+      if (open) {
+        if (st == 1) pc.x1 = std::min(pc.x1 + tol::kTrimExtend, x1);
+        out.push_back(pc);
+        open = false;
+      }
+      prev = st;
+    }
+  }
+  if (open) out.push_back(pc);
+}
+
+void sort_small(double* bp, int nb) {
+  for (int i = 1; i < nb; ++i)
+    for (int j = i; j > 0 && bp[j] < bp[j - 1]; --j) std::swap(bp[j], bp[j - 1]);
+}
+
+void slice_sphere(const OffsetElements& el, std::uint32_t v, double y0, bool trim,
                   std::vector<SlicePiece>& out) {
   const Vec3& c = el.points[el.vertex_source[v]];
   const double R = el.radius, d = c.y() - y0;
@@ -99,10 +138,49 @@ void slice_sphere(const OffsetElements& el, std::uint32_t v, double y0,
   pc.y0 = y0;
   pc.radius = R;
   pc.point = c;
-  if (pc.x0 < pc.x1) out.push_back(pc);
+  if (!(pc.x0 < pc.x1)) return;
+  const std::uint32_t r0 = trim && !el.ring_offsets.empty() ? el.ring_offsets[v] : 0;
+  const std::uint32_t r1 = trim && !el.ring_offsets.empty() ? el.ring_offsets[v + 1] : 0;
+  if (r0 == r1) {
+    out.push_back(pc);
+    return;
+  }
+  // Keep the arc where the contact direction p - c satisfies (p - c) . w <= 0 for every ring
+  // direction w: in the plane, X wx + Z wz <= k with X = x - c.x, Z = z - c.z, k = d wy.
+  constexpr int kMaxBp = 2 + 2 * 16;
+  double bp[kMaxBp];
+  int nb = 0;
+  bp[nb++] = pc.x0;
+  bp[nb++] = pc.x1;
+  const double slack = (el.vertex_flat[v] ? tol::kFlatTrimSlack : tol::kTrimSlack) * R;
+  for (std::uint32_t k = r0; k < r1; ++k) {
+    const Vec3 w = el.points[el.ring[k]] - c;
+    const double wl = w.norm(), h = std::hypot(w.x(), w.z());
+    const double kk = d * w.y() + slack * wl;
+    if (!(h > 1e-12 * wl)) {
+      if (-kk > 0) return;  // the whole section cuts into this facet side
+      continue;
+    }
+    const double dist = kk / h;
+    if (!(std::abs(dist) < r) || nb + 2 > kMaxBp) continue;
+    const double t = std::sqrt((r - dist) * (r + dist));
+    const double X0 = dist * w.x() / h;
+    bp[nb++] = c.x() + X0 - t * w.z() / h;
+    bp[nb++] = c.x() + X0 + t * w.z() / h;
+  }
+  sort_small(bp, nb);
+  auto state = [&](double x) {
+    const double X = x - c.x(), Z = std::sqrt(std::max(0.0, r * r - X * X));
+    for (std::uint32_t k = r0; k < r1; ++k) {
+      const Vec3 w = el.points[el.ring[k]] - c;
+      if (X * w.x() - d * w.y() + Z * w.z() > slack * w.norm()) return 1;
+    }
+    return 2;
+  };
+  emit_runs(bp, nb, pc, state, out);
 }
 
-void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0,
+void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0, bool trim,
                     std::vector<SlicePiece>& out) {
   const auto& ev = el.edge_vertices[e];
   const Vec3& A = el.points[ev[0]];
@@ -118,8 +196,10 @@ void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0,
   // (|uy p - ux q| <= R sqrt(a)) and the points where the section crosses the end planes
   // t = 0 and t = L (on the circles of radius R around A and B perpendicular to u). The
   // valid set is a union of intervals between consecutive breakpoints.
-  std::array<double, 6> bp;
+  std::array<double, 10> bp;
   int nb = 0;
+  const std::array<Vec3, 2>* wedge =
+      trim && !el.edge_wedge.empty() && !el.edge_wedge[e][0].isZero() ? &el.edge_wedge[e] : nullptr;
   if (u.y() != 0) {
     const double h = R * std::sqrt(a);
     const double p0 = (u.x() * q - h) / u.y(), p1 = (u.x() * q + h) / u.y();
@@ -137,9 +217,30 @@ void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0,
       for (double c : {cs, -cs}) bp[nb++] = A.x() + tau * u.x() + R * (c * e1.x() + sn * e2.x());
     }
   }
+  // The wedge's sides (planes through the axis perpendicular to w1, w2) meet the plane in
+  // lines through the axis point o; where they cross the section ellipse the kept part may
+  // start or end. (An axis parallel to the plane gives a line whose contact direction is
+  // constant: nothing to add.)
+  if (wedge && u.y() != 0) {
+    const Vec3 o = A + u * (q / u.y());
+    const double M = R / std::abs(u.y());
+    Vec2 ax(u.x(), u.z());
+    ax = ax.norm() > 0 ? Vec2(ax / ax.norm()) : Vec2(1, 0);
+    const Vec2 bx(-ax.y(), ax.x());
+    // Side i in the plane: n . (p - o) = slack with n = (w.x, w.z); on the ellipse
+    // p - o = M cos(th) a + R sin(th) b this is P cos(th) + Q sin(th) = slack.
+    const double side = (el.edge_flat[e] ? tol::kFlatTrimSlack : tol::kTrimSlack) * R;
+    for (const Vec3& w : *wedge) {
+      const Vec2 n(w.x(), w.z());
+      const double P = M * n.dot(ax), Q = R * n.dot(bx), H = std::hypot(P, Q);
+      if (!(H > 1e-12 * R) || !(std::abs(side) <= H)) continue;
+      const double phi = std::atan2(Q, P), delta = std::acos(side / H);
+      for (double th : {phi - delta, phi + delta})
+        bp[nb++] = o.x() + M * std::cos(th) * ax.x() + R * std::sin(th) * bx.x();
+    }
+  }
   if (nb < 2) return;
-  for (int i = 1; i < nb; ++i)  // insertion sort of at most 6 values
-    for (int j = i; j > 0 && bp[j] < bp[j - 1]; --j) std::swap(bp[j], bp[j - 1]);
+  sort_small(bp.data(), nb);
 
   PieceKind kind = PieceKind::kCylinderEllipse;
   if (u.x() == 0 && u.z() == 0)
@@ -154,29 +255,19 @@ void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0,
   pc.point = A;
   pc.dir = u;
   pc.length = L;
-  bool open = false;  // a piece is being extended
-  for (int i = 0; i + 1 < nb; ++i) {
-    const double x0 = bp[i], x1 = bp[i + 1];
-    bool valid = false;
-    if (x0 < x1) {
-      const double xm = 0.5 * (x0 + x1);
-      bool ok;
-      const double w = cylinder_upper_w(A, u, R, xm, y0, ok);
-      const double t = (xm - A.x()) * u.x() + q * u.y() + w * u.z();
-      valid = ok && t >= 0 && t <= L;
+  const double slack = (el.edge_flat[e] ? tol::kFlatTrimSlack : tol::kTrimSlack) * R;
+  auto state = [&](double xm) {
+    bool ok;
+    const double w = cylinder_upper_w(A, u, R, xm, y0, ok);
+    const double t = (xm - A.x()) * u.x() + q * u.y() + w * u.z();
+    if (!(ok && t >= 0 && t <= L)) return 0;
+    if (wedge) {
+      const Vec3 pa(xm - A.x(), q, w);
+      if (pa.dot((*wedge)[0]) > slack || pa.dot((*wedge)[1]) > slack) return 1;
     }
-    if (valid) {
-      if (!open) {
-        pc.x0 = x0;
-        open = true;
-      }
-      pc.x1 = x1;
-    } else if (open && x0 < x1) {
-      out.push_back(pc);
-      open = false;
-    }
-  }
-  if (open) out.push_back(pc);
+    return 2;
+  };
+  emit_runs(bp.data(), nb, pc, state, out);
 }
 
 }  // namespace
@@ -344,15 +435,15 @@ bool line_of(const SlicePiece& pc, double& slope, double& intercept) {
 }
 
 void slice_elements(const OffsetElements& el, double y0, std::uint32_t begin, std::uint32_t end,
-                    std::vector<SlicePiece>& out) {
+                    std::vector<SlicePiece>& out, bool trim) {
   const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
   for (std::uint32_t id = begin; id < end; ++id) {
     if (id < nf)
       slice_facet(el, id, y0, out);
     else if (id < nf + ne)
-      slice_cylinder(el, id - nf, y0, out);
+      slice_cylinder(el, id - nf, y0, trim, out);
     else
-      slice_sphere(el, id - nf - ne, y0, out);
+      slice_sphere(el, id - nf - ne, y0, trim, out);
   }
 }
 

@@ -106,7 +106,11 @@ bool line_of(const SlicePiece& piece, double& slope, double& intercept);
 
 // Appends to `out` the pieces of the given elements (ids in [begin, end) of the element
 // space) in the plane y = y0, in id order. Pieces of zero x length are dropped.
+// trim: keep only the part of a cylinder or sphere where the ball touching it would not cut
+// into a facet around the edge or vertex (OffsetElements::edge_wedge, ring): elsewhere the
+// piece lies below the envelope. The envelope is the same either way; trimmed pieces are
+// far shorter (on a smooth mesh a convex edge's piece spans about R times its bend angle).
 void slice_elements(const OffsetElements& el, double y0, std::uint32_t begin, std::uint32_t end,
-                    std::vector<SlicePiece>& out);
+                    std::vector<SlicePiece>& out, bool trim = true);
 
 }  // namespace ncpath

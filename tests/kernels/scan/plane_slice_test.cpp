@@ -31,7 +31,9 @@ void check_mesh(const TriangleMesh& mesh, std::mt19937_64& rng, int planes, int 
   int piece_checks = 0;
   for (int k = 0; k < planes; ++k) {
     const double y0 = ry(rng);
-    const auto pieces = slice_all(el, y0);
+    // Whole pieces on even planes, trimmed ones on odd planes: both envelopes are the
+    // drop-cutter.
+    const auto pieces = slice_all(el, y0, k % 2 == 1);
     ASSERT_FALSE(pieces.empty());
     for (const SlicePiece& pc : pieces) {
       ASSERT_LE(pc.x0, pc.x1);
@@ -277,15 +279,48 @@ TEST(PlaneSlice, SplitRangesGiveTheSamePieces) {
   std::mt19937_64 rng(9);
   const TriangleMesh mesh = random_terrain(rng, 6);
   const OffsetElements el = build_offset_elements(mesh, 0.8);
-  const auto all = slice_all(el, 7.3);
+  const auto all = slice_all(el, 7.3, true);
   std::vector<SlicePiece> split;
   const auto n = std::uint32_t(el.element_count());
   for (std::uint32_t b = 0; b < n; b += 7) slice_elements(el, 7.3, b, std::min(n, b + 7), split);
+  // Trimming removes pieces: fewer than the whole ones, none longer.
+  EXPECT_LT(all.size() + 5, slice_all(el, 7.3, false).size());
   ASSERT_EQ(all.size(), split.size());
   for (std::size_t i = 0; i < all.size(); ++i) {
     EXPECT_EQ(all[i].element, split[i].element);
     EXPECT_EQ(all[i].x0, split[i].x0);
     EXPECT_EQ(all[i].x1, split[i].x1);
+  }
+}
+
+TEST(PlaneSlice, TrimmedPiecesLieWithinTheElementsYReach) {
+  // element_y_reach bounds the planes that get a trimmed piece: every element that gives
+  // one in a plane must reach that plane; and the reach is not the whole +-R band.
+  std::mt19937_64 rng(31);
+  for (const TriangleMesh& mesh : {random_terrain(rng, 9), random_soup(rng, 60)}) {
+    const OffsetElements el = build_offset_elements(mesh, 1.1);
+    std::uniform_real_distribution<double> ry(-1, 21);
+    int pieces = 0, narrower = 0;
+    for (std::uint32_t id = 0; id < el.element_count(); ++id) {
+      double lo = 0, hi = 0;
+      const bool reach = element_y_reach(el, id, lo, hi);
+      if (id >= el.facet_count() && reach && hi - lo < 2 * 1.1 - 1e-6) ++narrower;
+      for (int k = 0; k < 30; ++k) {
+        const double y0 = ry(rng);
+        std::vector<SlicePiece> out;
+        slice_elements(el, y0, id, id + 1, out, true);
+        if (!element_reachable(el, id)) continue;
+        for (const SlicePiece& pc : out) {
+          ASSERT_TRUE(reach) << "element " << id;
+          EXPECT_GE(y0, lo) << "element " << id;
+          EXPECT_LE(y0, hi) << "element " << id;
+          ++pieces;
+          (void)pc;
+        }
+      }
+    }
+    EXPECT_GT(pieces, 300);
+    EXPECT_GT(narrower, 20);
   }
 }
 

@@ -73,9 +73,10 @@ inline std::vector<PreparedFacet> prepare_all(const TriangleMesh& mesh) {
   return out;
 }
 
-inline std::vector<SlicePiece> slice_all(const OffsetElements& el, double y0) {
+// All pieces of all elements in the plane y0 (trimmed to their cones, or whole).
+inline std::vector<SlicePiece> slice_all(const OffsetElements& el, double y0, bool trim = false) {
   std::vector<SlicePiece> pieces;
-  slice_elements(el, y0, 0, std::uint32_t(el.element_count()), pieces);
+  slice_elements(el, y0, 0, std::uint32_t(el.element_count()), pieces, trim);
   return pieces;
 }
 
