@@ -242,4 +242,33 @@ inline constexpr double kEnvelopeJump = 1e-9;
 // (the path continues smoothly from one element to the next).
 inline constexpr double kJunctionTangentAngle = 1e-6;
 
+// ---- Z-level contours (kernels/scan/zlevel*) ----
+
+// mm. A point within this of a region's boundary is on it (z-level contours): a contour piece
+// whose sample points all lie this close to another region's boundary is coincident with it
+// (the lower element id keeps a shared piece; a piece with regions on both sides is dropped),
+// and a piece is inside another region only when deeper than this. Coincident boundaries of
+// different elements (stacked edges of a wall, duplicated vertices) agree to ~1e-14 mm.
+inline constexpr double kZLevelOnBoundary = 1e-11;
+
+// mm. Contour piece ends closer than this are the same contour vertex when pieces are linked
+// into loops. Covers pieces dropped next to tangent joints, where a piece shorter than
+// sqrt(2 kZLevelOnBoundary R) cannot be told from the curve it touches.
+inline constexpr double kZLevelLink = 1e-5;
+
+// mm. A cell of the z-level pruning grid is interior when it lies this deep inside one region.
+inline constexpr double kZLevelCellMargin = 1e-9;
+
+// mm. Root isolation on conic arcs stops at sub-arcs shorter than this: two crossings closer
+// than this may both be missed (the curves then touch within rounding).
+inline constexpr double kZLevelRootLength = 1e-10;
+
+// mm. An elliptic contour arc within this of its chord is output as a line (very flat edges
+// give ellipses with huge semi-axes whose centre form loses precision).
+inline constexpr double kZLevelFlatArc = 1e-10;
+
+// Dimensionless (rise over horizontal length). An edge flatter than this is horizontal for
+// z-level contours: the sides of its capsule are straight.
+inline constexpr double kZLevelFlatSlope = 1e-12;
+
 }  // namespace ncpath::tol

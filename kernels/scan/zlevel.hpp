@@ -1,0 +1,147 @@
+#pragma once
+// Exact z-level contours of a ball-end mill over a triangle mesh: for a tool-tip level z the
+// boundary of U = {(x, y) : E(x, y) >= zc}, zc = z + R, where E is the drop-cutter surface
+// (upper envelope of the offset elements, kernels/mesh/offset_elements.hpp): the region where
+// the ball at that height would touch or cut the part. Closed loops of typed segments (lines,
+// circular and elliptic arcs), U on the left, with the element each segment comes from and
+// the junctions between elements with their bi-contact vectors.
+//
+// Regions (their union is U). E is the highest point at distance R from the mesh, the max
+// over facets of the top of each facet's R-neighbourhood N_f. The top of N_f above (x, y) is
+// reached either at a point with an interior closest point (then it lies on the offset
+// triangle, the normal turned up) or with its closest point on the facet's boundary (then it
+// lies on an edge's cylinder or a vertex's sphere). Hence {E >= zc} is the union of
+//   - facet f (not vertical): the projected offset triangle where the offset plane's height
+//     is >= zc (a triangle clipped by one half-plane);
+//   - edge AB: the capsule shadow {xy : exists p in AB, |xy - p_xy|^2 + max(0, zc - p_z)^2
+//     <= R^2} (cylinder and both end spheres; convex);
+//   - vertex v: the disc of radius sqrt(R^2 - max(0, zc - v_z)^2) (the capsule's end disc;
+//     kept as a region of its own so that the circle shared by all capsules at v is emitted
+//     once, under the vertex's id).
+// Vertical facets add nothing beyond their top edges and vertices; vertical edges nothing
+// beyond their end discs. With OffsetElements' reachability flags, unreachable edges and
+// vertices (below the envelope of their neighbours) are skipped: U does not change.
+//
+// Boundary candidates. A facet region's sides other than its clip line lie strictly inside
+// its edges' capsules (an offset-edge point q = p + R n with q_z > zc has |q_xy - p_xy|^2 +
+// (zc - p_z)^2 = R^2 (1 - n_z^2) + (zc - p_z)^2 < R^2), so facets contribute only their clip
+// segment (and, in the degenerate case of an offset side at exactly zc, that side). Each
+// clip segment ends tangent to the ellipse of the edge it ends on (the offset plane is
+// tangent to the edge's cylinder along the offset edge), and each capsule side ends tangent
+// to its end vertex's circle: these tangent joints are inserted as split points explicitly.
+//
+// Method. Elements are pruned with a uniform grid: cells lying (with margin) inside one
+// region (mostly the discs of the mesh points) are interior to U and no boundary passes
+// through them; regions and curves that reach no other cell are never built. Each remaining
+// curve is cut into sub-pieces of about a cell; those lying in interior cells or strictly
+// inside one other region are dropped, and the curve is trimmed to the rest (crossings there
+// cannot be on the boundary). The trimmed curves are split at their exact
+// crossings (closed form when a line is involved or for two circles; certified
+// branch-and-bound root isolation on the arc parameter otherwise), each piece is kept when
+// its midpoint lies strictly inside no other region (coincident pieces: the lower element id
+// keeps a shared piece, pieces with regions on both sides are dropped), and kept pieces are
+// linked end to end (tol::kZLevelLink) into loops.
+//
+// Contacts. On a capsule side or vertex circle where the element lies above the level
+// (ContourSeg::shadow), E jumps there (a wall or an overhang): the ball at the level does not
+// touch the element but passes under it; its contact is on the vertical below the element
+// (the wall, when the mesh has one), the bi-contact vector is horizontal.
+//
+// Output is deterministic: it does not depend on the order or repetition of candidates.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "kernels/geom/tolerance.hpp"
+#include "kernels/geom/vec.hpp"
+#include "kernels/mesh/offset_elements.hpp"
+#include "kernels/scan/envelope.hpp"  // JunctionKind, shared with the drive-plane curves
+
+namespace ncpath {
+
+enum class ContourSegKind : std::uint8_t { kLine = 0, kCircleArc = 1, kEllipseArc = 2 };
+const char* contour_seg_kind_name(ContourSegKind kind);
+
+// One segment of a contour, from a to b (mm), U on its left. Arcs:
+//   p(t) = centre + r1 cos(t) axis + r2 sin(t) perp(axis),  t from t0 to t1,
+// perp(axis) = axis turned +90 degrees; t1 > t0 is counter-clockwise (always so here: every
+// arc bounds its own convex region, which lies on its left). Circles: r1 == r2, axis (1, 0).
+// Ellipses (section of an edge's cylinder by the plane z = zc): r2 = R, r1 = R / sin(slope)
+// along the edge's horizontal direction `axis`; very flat edges give huge r1 and a far
+// centre: evaluate with seg_point(), which works from the end points. Lines: a, b only.
+struct ContourSeg {
+  ContourSegKind kind = ContourSegKind::kLine;
+  bool shadow = false;        // the element lies above the level here (E jumps, see above)
+  std::uint32_t element = 0;  // offset element id whose region boundary this is
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+  Vec2 centre = Vec2::Zero();
+  double r1 = 0, r2 = 0;
+  Vec2 axis = Vec2(1, 0);
+  double t0 = 0, t1 = 0;
+};
+
+// Where segment `seg` of a contour starts and the previous one (of a different element) ends.
+// position: (x, y, tip level). b1, b2: unit vectors from the contact point of e1 (the
+// element before) and of e2 (after) to the ball centre (x, y, zc). The contact point is the
+// element's closest point (facet: centre - R n; edge: closest point of the segment; vertex),
+// or, for a shadow element, the point of the vertical below it at height zc. A union of
+// convex regions has no convex corners, so kConvex does not occur, except at the corners of a
+// horizontal facet lying exactly at the level (a floor: its capsules have zero width there).
+struct ZJunction {
+  Vec3 position = Vec3::Zero();
+  JunctionKind kind = JunctionKind::kTangent;
+  std::uint32_t seg = 0;
+  std::uint32_t e1 = 0, e2 = 0;
+  Vec3 b1 = Vec3::Zero(), b2 = Vec3::Zero();
+};
+
+// A closed loop: segs[i].b == segs[i + 1].a (within tol::kZLevelLink), the last ends at the
+// first's start. Outer boundaries run counter-clockwise (area > 0), holes clockwise.
+struct ZContour {
+  std::vector<ContourSeg> segs;
+  std::vector<ZJunction> junctions;
+  bool hole = false;
+  double area = 0;  // signed enclosed area, mm^2 (exact for the typed segments)
+};
+
+struct ZLevelStats {
+  std::uint64_t candidates = 0;        // distinct candidate ids
+  std::uint64_t regions = 0;           // regions built (near the boundary)
+  std::uint64_t interior_cells = 0;    // grid cells certified inside U
+  std::uint64_t cells = 0;             // grid cells
+  std::uint64_t curves = 0;            // candidate boundary curves built
+  std::uint64_t active_curves = 0;     // trimmed curves (parts not certified inside U)
+  std::uint64_t pairs = 0;             // curve pairs intersected
+  std::uint64_t crossings = 0;         // crossing points found
+  std::uint64_t pieces = 0;            // pieces classified
+  std::uint64_t kept = 0;              // pieces on the boundary
+  std::uint64_t open_chains = 0;       // chains that could not be closed (0 in a valid result)
+  std::uint64_t convex_junctions = 0;  // convex corners (only at floors exactly at the level)
+};
+
+struct ZLevelResult {
+  double tip_z = 0;                // the level, mm
+  std::vector<ZContour> contours;  // sorted by their first segment's start (x, then y)
+  ZLevelStats stats;
+};
+
+struct ZLevelParams {
+  double cell = 0;  // pruning grid cell, mm; 0: R / 2 (raised if the grid would be huge)
+  bool skip_unreachable = true;  // use OffsetElements' edge/vertex reachability flags
+  double on_boundary = tol::kZLevelOnBoundary;
+  double link = tol::kZLevelLink;
+};
+
+// Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any
+// order, repeats allowed); it must contain every facet and edge whose region is not empty
+// (vertices are derived from the edges); passing all ids is correct.
+ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
+                             double tip_z, const ZLevelParams& params = {});
+
+// Point of a segment at fraction f of its parameter (0: a, 1: b), mm.
+Vec2 seg_point(const ContourSeg& s, double f);
+// Appends points of the segment from a (included) towards b (excluded), chords within
+// chord_tol (mm) of the exact curve.
+void discretise(const ContourSeg& s, double chord_tol, std::vector<Vec2>& out);
+
+}  // namespace ncpath

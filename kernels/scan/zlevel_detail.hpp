@@ -1,0 +1,137 @@
+#pragma once
+// Internals of the z-level contour kernel (kernels/scan/zlevel.hpp), shared by its .cpp files
+// only: the region of one offset element at one level, its candidate boundary curves, the
+// membership test and curve-curve intersection.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/geom/vec.hpp"
+#include "kernels/mesh/offset_elements.hpp"
+#include "kernels/scan/zlevel.hpp"
+
+namespace ncpath::zlevel_detail {
+
+inline constexpr std::uint32_t kNone = 0xffffffffu;
+
+inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline Vec2 perp(const Vec2& a) { return Vec2(-a.y(), a.x()); }
+
+struct Level {
+  double zc = 0;  // ball-centre height, mm
+  double R = 0;   // ball radius, mm
+};
+
+enum class RegionKind : std::uint8_t { kFacet = 0, kEdge = 1, kVertex = 2 };
+
+// Half-plane n . x <= c, n a unit vector pointing out.
+struct HalfPlane {
+  Vec2 n = Vec2::Zero();
+  double c = 0;
+};
+
+// The region of one element at the level (see zlevel.hpp), with its exact bounding box.
+struct Region {
+  RegionKind kind = RegionKind::kFacet;
+  std::uint8_t nhp = 0;
+  std::uint32_t element = 0;
+  std::uint32_t index = 0;  // facet, edge or vertex index within its kind
+  std::uint32_t curve_begin = 0, curve_end = 0;
+  double box[4] = {0, 0, 0, 0};             // x0, y0, x1, y1, mm
+  std::array<HalfPlane, 4> hp;              // facet: triangle sides and the clip line
+  Vec3 a = Vec3::Zero(), d = Vec3::Zero();  // edge: lower end A and B - A (d.z >= 0)
+  double dd = 0, dxy2 = 0;                  // edge: |d|^2, |d_xy|^2
+  Vec2 c = Vec2::Zero();                    // vertex: centre
+  double r = 0, vz = 0;                     // vertex: disc radius, height
+};
+
+// Builds the region of element `id`; false when it is empty, has no area, or is not needed
+// (vertical facet, vertical edge, unreachable element when `reach` is set).
+bool build_region(const OffsetElements& el, std::uint32_t id, const Level& lv, bool reach,
+                  Region& out);
+
+// Signed membership value at x: < 0 inside, > 0 outside, 0 on the boundary. Exact distance
+// for facets and vertex discs; for capsules (g - R^2) / (2 R) with g the squared distance
+// to the nearest generating disc, which is at most the distance in magnitude near the
+// boundary. `outward` (if given) receives an outward direction (not normalised) and
+// `contact` the contact parameter (edges: t on AB).
+double region_phi(const Region& g, const Vec2& x, const Level& lv, Vec2* outward = nullptr,
+                  double* contact = nullptr);
+
+// The x-interval of {y = const} strictly inside the region by `margin` (an inner subset is
+// fine); false if empty. Used to mark interior grid cells.
+bool region_row(const Region& g, double y, double margin, const Level& lv, double& x0, double& x1);
+
+enum class CurveKind : std::uint8_t { kLine = 0, kCircle = 1, kEllipse = 2 };
+
+// A candidate boundary curve, running with its region on the left, parameter s in [0, len]:
+//   line:  p(s) = a + s dir                              (len = length)
+//   conic: p(s) = a + (cos s - 1) e1 + sin s e2           (len = sweep, at most pi / 2)
+// The conic form is the arc's own frame (e1 = a - centre, e2 = tangent at a), so it stays
+// accurate for very flat ellipses whose centre is far away.
+struct Curve {
+  CurveKind kind = CurveKind::kLine;
+  bool shadow = false;
+  std::uint32_t region = 0, element = 0;
+  Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+  double len = 0;
+  Vec2 dir = Vec2::Zero();
+  Vec2 e1 = Vec2::Zero(), e2 = Vec2::Zero();
+  // Output geometry of conics (zlevel.hpp ContourSeg) with t0 the angle at a.
+  Vec2 centre = Vec2::Zero();
+  double r1 = 0, r2 = 0, t0 = 0;
+  Vec2 axis = Vec2(1, 0);
+  // Implicit equation: circle |x - centre|^2 - r1^2; ellipse |(X - ax_p) x ax_d|^2 - R^2
+  // with X = (x, y, zc) (the cylinder around the edge's line).
+  Vec3 ax_p = Vec3::Zero(), ax_d = Vec3::Zero();
+  double box[4] = {0, 0, 0, 0};
+};
+
+// A point that must split a curve of element `target` (tangent joints, see zlevel.hpp);
+// when no curve of target passes through it, the curves of alt[0], alt[1] are tried.
+struct Joint {
+  Vec2 p = Vec2::Zero();
+  std::uint32_t target = kNone;
+  std::uint32_t alt[2] = {kNone, kNone};
+};
+
+// Appends the candidate boundary curves of region `g` (index gi) and the joints they make.
+void region_curves(const OffsetElements& el, const Region& g, std::uint32_t gi, const Level& lv,
+                   std::vector<Curve>& curves, std::vector<Joint>& joints);
+
+// ---- curve geometry (zlevel_intersect.cpp) ----
+Vec2 curve_point(const Curve& c, double s);
+Vec2 curve_tangent(const Curve& c, double s);  // dp/ds
+double curve_speed(const Curve& c);            // bound of |dp/ds| and |d2p/ds2|
+// Parameter of a point on or next to the curve (unclamped).
+double curve_param(const Curve& c, const Vec2& x);
+// Implicit function of the curve's full line / circle / ellipse at x, and its gradient.
+double curve_implicit(const Curve& c, const Vec2& x, double zc, Vec2* grad = nullptr);
+void finish_box(Curve& c);
+
+struct Hit {
+  Vec2 p;
+  double sc, sd;  // parameters on C and on D
+};
+// Crossings of C and D within both parameter ranges (inclusive, slightly widened).
+// `coincident` is set when the curves lie on the same line / circle / ellipse; then their
+// end points inside each other's range are returned as hits instead.
+void intersect_curves(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
+                      bool& coincident);
+
+// ---- loops (zlevel_loops.cpp) ----
+
+// A piece of curves[curve] on the boundary of U, parameters s0 < s1, ends a and b.
+struct KeptPiece {
+  std::uint32_t curve;
+  double s0, s1;
+  Vec2 a, b;
+};
+
+// Links the pieces into closed loops (ends within `link`), merges runs of one element's
+// curve, classifies junctions and writes the canonical contours into out.
+void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
+                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
+                 ZLevelResult& out);
+
+}  // namespace ncpath::zlevel_detail

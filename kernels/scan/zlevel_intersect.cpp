@@ -1,0 +1,318 @@
+// Curve evaluation and curve-curve crossings for the z-level contours (zlevel_detail.hpp).
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "kernels/geom/tolerance.hpp"
+#include "kernels/scan/zlevel_detail.hpp"
+
+namespace ncpath::zlevel_detail {
+
+namespace {
+
+// sin and cos of s / 2 (one call).
+inline void sincos_half(double s, double& sn, double& cs) {
+  sn = std::sin(0.5 * s);
+  cs = std::cos(0.5 * s);
+}
+
+// mm. Crossings found this far beyond a curve's end still count (the neighbouring curve that
+// continues it may miss them by rounding; a duplicate split is harmless).
+constexpr double kEndSlack = 1e-9;
+// B&B nodes per curve pair before the pair counts as coincident (identical ellipses).
+constexpr int kMaxNodes = 20000;
+
+double param_slack(const Curve& c) {
+  return c.kind == CurveKind::kLine ? kEndSlack : kEndSlack / (c.e1.norm() + c.e2.norm());
+}
+
+bool in_range(const Curve& c, double& s) {
+  const double sl = param_slack(c);
+  if (s < -sl || s > c.len + sl) return false;
+  s = std::clamp(s, 0.0, c.len);
+  return true;
+}
+
+double hess_norm(const Curve& c) {
+  return c.kind == CurveKind::kLine ? 0.0 : c.kind == CurveKind::kCircle ? 2.0 : 4.0;
+}
+
+// Stable roots of a t^2 + 2 b t + c = 0 (a > 0); returns their number.
+int quadratic(double a, double b, double c, double t[2]) {
+  const double disc = b * b - a * c;
+  if (!(disc >= 0) || !(a > 0)) return 0;
+  const double s = std::sqrt(disc);
+  const double q = -(b + (b >= 0 ? s : -s));
+  if (q == 0) {
+    t[0] = 0;
+    return 1;
+  }
+  t[0] = q / a;
+  t[1] = c / q;
+  return 2;
+}
+
+void add_hit(const Curve& C, const Curve& D, const Vec2& p, double sc, std::vector<Hit>& out) {
+  double sd = curve_param(D, p);
+  if (!in_range(C, sc) || !in_range(D, sd)) return;
+  out.push_back({p, sc, sd});
+}
+
+// End points of each curve that lie inside the other's parameter range.
+void coincident_hits(const Curve& C, const Curve& D, std::vector<Hit>& out) {
+  for (const Vec2* p : {&D.a, &D.b}) {
+    double sc = curve_param(C, *p);
+    if (in_range(C, sc)) out.push_back({*p, sc, p == &D.a ? 0.0 : D.len});
+  }
+  for (const Vec2* p : {&C.a, &C.b}) {
+    double sd = curve_param(D, *p);
+    if (in_range(D, sd)) out.push_back({*p, p == &C.a ? 0.0 : C.len, sd});
+  }
+}
+
+void line_line(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
+               bool& coincident) {
+  const double denom = cross2(C.dir, D.dir);
+  const double q0 = cross2(D.dir, C.a - D.a);  // D's signed distance of C.a
+  if (std::abs(denom) <= 1e-15) {
+    if (std::abs(q0) <= tol::kZLevelOnBoundary &&
+        std::abs(cross2(D.dir, C.b - D.a)) <= tol::kZLevelOnBoundary) {
+      coincident = true;
+      coincident_hits(C, D, out);
+    }
+    (void)lv;
+    return;
+  }
+  const double t = q0 / denom;
+  add_hit(C, D, C.a + t * C.dir, t, out);
+}
+
+// C a line, D a conic: the conic's implicit along the line is a quadratic in t.
+void line_conic(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out) {
+  double a, b, c;
+  if (D.kind == CurveKind::kCircle) {
+    const Vec2 w = C.a - D.centre;
+    a = 1;
+    b = w.dot(C.dir);
+    c = (w.norm() - D.r1) * (w.norm() + D.r1);
+  } else {
+    const Vec3 w(C.a.x() - D.ax_p.x(), C.a.y() - D.ax_p.y(), lv.zc - D.ax_p.z());
+    const Vec3 f0 = w.cross(D.ax_d), f1 = Vec3(C.dir.x(), C.dir.y(), 0).cross(D.ax_d);
+    a = f1.squaredNorm();
+    b = f0.dot(f1);
+    c = (f0.norm() - D.r2) * (f0.norm() + D.r2);
+  }
+  double t[2];
+  const int n = quadratic(a, b, c, t);
+  for (int i = 0; i < n; ++i) add_hit(C, D, C.a + t[i] * C.dir, t[i], out);
+}
+
+void circle_circle(const Curve& C, const Curve& D, std::vector<Hit>& out, bool& coincident) {
+  const Vec2 dv = D.centre - C.centre;
+  const double dist = dv.norm();
+  if (dist <= tol::kZLevelOnBoundary && std::abs(C.r1 - D.r1) <= tol::kZLevelOnBoundary) {
+    coincident = true;
+    coincident_hits(C, D, out);
+    return;
+  }
+  if (!(dist > 0)) return;
+  const double a = (C.r1 * C.r1 - D.r1 * D.r1 + dist * dist) / (2 * dist);
+  const double h2 = (C.r1 - a) * (C.r1 + a);
+  if (!(h2 >= 0)) return;
+  const double h = std::sqrt(h2);
+  const Vec2 e = dv / dist, base = C.centre + a * e;
+  for (double sg : {1.0, -1.0}) {
+    if (sg < 0 && h == 0) break;
+    const Vec2 p = base + sg * h * perp(e);
+    add_hit(C, D, p, curve_param(C, p), out);
+  }
+}
+
+// Certified root isolation of F(s) = Q_D(P_C(s)) on [0, C.len] (C a conic): an interval is
+// dropped when the bound |F(s) - F(m) - F'(m)(s - m)| <= M2 w^2 / 2 rules a zero out, a
+// monotone interval (|F'(m)| > M2 w) is solved by Illinois regula falsi on a sign change,
+// anything else is halved down to tol::kZLevelRootLength.
+struct RootSearch {
+  const Curve& C;
+  const Curve& D;
+  double zc, speed, hess, slack;
+  int nodes = 0;
+  std::vector<double>& roots;
+
+  double F(double s) const { return curve_implicit(D, curve_point(C, s), zc); }
+
+  void solve(double lo, double hi, double flo, double fhi) {
+    for (int it = 0, side = 0; it < 100; ++it) {
+      if ((hi - lo) * speed < 1e-3 * tol::kZLevelRootLength) break;
+      double m = (lo * fhi - hi * flo) / (fhi - flo);
+      if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
+      const double fm = F(m);
+      if (fm == 0) {
+        lo = hi = m;
+        break;
+      }
+      if ((fm < 0) == (flo < 0)) {
+        lo = m;
+        flo = fm;
+        if (side == -1) fhi *= 0.5;
+        side = -1;
+      } else {
+        hi = m;
+        fhi = fm;
+        if (side == 1) flo *= 0.5;
+        side = 1;
+      }
+    }
+    roots.push_back(0.5 * (lo + hi));
+  }
+
+  void search(double lo, double hi, double flo, double fhi) {
+    if (++nodes > kMaxNodes) return;
+    const double m = 0.5 * (lo + hi), w = 0.5 * (hi - lo);
+    Vec2 grad;
+    const double fm = curve_implicit(D, curve_point(C, m), zc, &grad);
+    const double fp = grad.dot(curve_tangent(C, m));
+    const double m2 = hess * speed * speed + (grad.norm() + hess * speed * w) * speed;
+    if (std::abs(fm) > std::abs(fp) * w + 0.5 * m2 * w * w + slack) return;
+    const bool change = (flo <= 0) != (fhi < 0) || flo == 0 || fhi == 0;
+    if (std::abs(fp) > m2 * w) {
+      if (change) solve(lo, hi, flo, fhi);
+      return;
+    }
+    if (speed * w < tol::kZLevelRootLength) {
+      if (change) roots.push_back(m);
+      return;
+    }
+    search(lo, m, flo, fm);
+    search(m, hi, fm, fhi);
+  }
+};
+
+void conic_conic(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
+                 bool& coincident) {
+  // Parametrise the slower curve (a circle, or the steeper edge's ellipse).
+  const bool swap = curve_speed(D) < curve_speed(C);
+  const Curve& P = swap ? D : C;
+  const Curve& Q = swap ? C : D;
+  const double scale = 2 * std::max(Q.r1, Q.r2);
+  const double f0 = curve_implicit(Q, P.a, lv.zc), f1 = curve_implicit(Q, P.b, lv.zc);
+  const double fm = curve_implicit(Q, curve_point(P, 0.5 * P.len), lv.zc);
+  const double on = tol::kZLevelOnBoundary * scale;
+  std::vector<double> roots;
+  RootSearch rs{P, Q, lv.zc, curve_speed(P), hess_norm(Q), 1e-12 * scale * scale, 0, roots};
+  if (std::abs(f0) <= on && std::abs(f1) <= on && std::abs(fm) <= on) {
+    rs.nodes = kMaxNodes + 1;
+  } else {
+    rs.search(0, P.len, f0, f1);
+  }
+  if (rs.nodes > kMaxNodes) {
+    coincident = true;
+    coincident_hits(C, D, out);
+    return;
+  }
+  for (double s : roots) {
+    const Vec2 p = s == 0 ? P.a : s == P.len ? P.b : curve_point(P, s);
+    double sp = s, sq = curve_param(Q, p);
+    if (!in_range(P, sp) || !in_range(Q, sq)) continue;
+    out.push_back(swap ? Hit{p, sq, sp} : Hit{p, sp, sq});
+  }
+}
+
+}  // namespace
+
+Vec2 curve_point(const Curve& c, double s) {
+  if (c.kind == CurveKind::kLine) return c.a + s * c.dir;
+  double h, k;
+  sincos_half(s, h, k);
+  return c.a - (2 * h * h) * c.e1 + (2 * h * k) * c.e2;
+}
+
+Vec2 curve_tangent(const Curve& c, double s) {
+  if (c.kind == CurveKind::kLine) return c.dir;
+  return -std::sin(s) * c.e1 + std::cos(s) * c.e2;
+}
+
+double curve_speed(const Curve& c) {
+  return c.kind == CurveKind::kLine ? 1.0 : c.e1.norm() + c.e2.norm();
+}
+
+double curve_param(const Curve& c, const Vec2& x) {
+  const Vec2 w = x - c.a;
+  if (c.kind == CurveKind::kLine) return w.dot(c.dir);
+  // [e1 e2] (cos s - 1, sin s) = x - a. The solve is ill-conditioned for flat ellipses (e1, e2
+  // nearly parallel); there Newton steps on (p(s) - x) . p'(s) = 0 refine it.
+  const double det = cross2(c.e1, c.e2);
+  const double cm = cross2(w, c.e2) / det, sn = cross2(c.e1, w) / det;
+  double s = std::atan2(sn, 1 + cm);
+  if (c.kind == CurveKind::kCircle || std::abs(det) > 0.25 * c.e1.norm() * c.e2.norm()) return s;
+  for (int it = 0; it < 3; ++it) {
+    double h, k;
+    sincos_half(s, h, k);
+    const double sn_s = 2 * h * k, cs_s = 1 - 2 * h * h;
+    const Vec2 r = c.a - (2 * h * h) * c.e1 + sn_s * c.e2 - x;
+    const Vec2 d1 = -sn_s * c.e1 + cs_s * c.e2, d2 = -cs_s * c.e1 - sn_s * c.e2;
+    const double den = d1.squaredNorm() + r.dot(d2);
+    if (!(den > 0)) break;
+    const double step = r.dot(d1) / den;
+    s -= step;
+    if (std::abs(step) * d1.norm() < 1e-15 * (1 + w.norm())) break;
+  }
+  return s;
+}
+
+double curve_implicit(const Curve& c, const Vec2& x, double zc, Vec2* grad) {
+  switch (c.kind) {
+    case CurveKind::kLine:
+      if (grad) *grad = perp(c.dir);
+      return cross2(c.dir, x - c.a);
+    case CurveKind::kCircle: {
+      const Vec2 w = x - c.centre;
+      if (grad) *grad = 2 * w;
+      const double n = w.norm();
+      return (n - c.r1) * (n + c.r1);
+    }
+    case CurveKind::kEllipse: {
+      const Vec3 w(x.x() - c.ax_p.x(), x.y() - c.ax_p.y(), zc - c.ax_p.z());
+      const Vec3 f = w.cross(c.ax_d);
+      const Vec3& d = c.ax_d;
+      if (grad) *grad = 2 * Vec2(f.dot(Vec3(0, -d.z(), d.y())), f.dot(Vec3(d.z(), 0, -d.x())));
+      const double n = f.norm();
+      return (n - c.r2) * (n + c.r2);
+    }
+  }
+  return 0;
+}
+
+void finish_box(Curve& c) {
+  c.box[0] = std::min(c.a.x(), c.b.x());
+  c.box[1] = std::min(c.a.y(), c.b.y());
+  c.box[2] = std::max(c.a.x(), c.b.x());
+  c.box[3] = std::max(c.a.y(), c.b.y());
+  if (c.kind != CurveKind::kLine) {
+    // The arc (sweep <= pi / 2) lies in the triangle of its ends and its tangents' crossing.
+    const Vec2 t = c.a + std::tan(0.5 * c.len) * c.e2;
+    c.box[0] = std::min(c.box[0], t.x());
+    c.box[1] = std::min(c.box[1], t.y());
+    c.box[2] = std::max(c.box[2], t.x());
+    c.box[3] = std::max(c.box[3], t.y());
+  }
+}
+
+void intersect_curves(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
+                      bool& coincident) {
+  coincident = false;
+  const bool lc = C.kind == CurveKind::kLine, ld = D.kind == CurveKind::kLine;
+  if (lc && ld) return line_line(C, D, lv, out, coincident);
+  if (lc) return line_conic(C, D, lv, out);
+  if (ld) {
+    const std::size_t first = out.size();
+    line_conic(D, C, lv, out);
+    for (std::size_t i = first; i < out.size(); ++i) std::swap(out[i].sc, out[i].sd);
+    return;
+  }
+  if (C.kind == CurveKind::kCircle && D.kind == CurveKind::kCircle)
+    return circle_circle(C, D, out, coincident);
+  conic_conic(C, D, lv, out, coincident);
+}
+
+}  // namespace ncpath::zlevel_detail

@@ -1,0 +1,326 @@
+// Z-level contours: linking kept pieces into loops, merging, junctions, canonical output
+// (kernels/scan/zlevel.hpp); segment evaluation and discretisation.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+
+#include "kernels/scan/zlevel_detail.hpp"
+
+namespace ncpath {
+
+namespace zlevel_detail {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+struct Dsu {
+  std::vector<std::uint32_t> p;
+  explicit Dsu(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) p[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+Vec2 unit(const Vec2& v) {
+  const double n = v.norm();
+  return n > 0 ? Vec2(v / n) : Vec2(0, 0);
+}
+
+// Clockwise angle from direction f to direction g, in (0, 2 pi].
+double cw_angle(const Vec2& f, const Vec2& g) {
+  double a = -std::atan2(cross2(f, g), f.dot(g));
+  if (a <= 0) a += 2 * kPi;
+  return a;
+}
+
+struct RawSeg {
+  ContourSeg seg;
+  Vec2 tin, tout;  // unit tangents at a and at b
+};
+
+RawSeg raw_seg(const Curve& c, const KeptPiece& k) {
+  RawSeg r;
+  ContourSeg& s = r.seg;
+  s.element = c.element;
+  s.shadow = c.shadow;
+  s.a = k.a;
+  s.b = k.b;
+  if (c.kind != CurveKind::kLine) {
+    s.kind =
+        c.kind == CurveKind::kCircle ? ContourSegKind::kCircleArc : ContourSegKind::kEllipseArc;
+    s.centre = c.centre;
+    s.r1 = c.r1;
+    s.r2 = c.r2;
+    s.axis = c.axis;
+    s.t0 = c.t0 + k.s0;
+    s.t1 = c.t0 + k.s1;
+  }
+  r.tin = unit(curve_tangent(c, k.s0));
+  r.tout = unit(curve_tangent(c, k.s1));
+  return r;
+}
+
+bool mergeable(const RawSeg& p, const RawSeg& q) {
+  const ContourSeg &a = p.seg, &b = q.seg;
+  if (a.element != b.element || a.kind != b.kind || a.shadow != b.shadow) return false;
+  if (a.kind == ContourSegKind::kLine)
+    return std::abs(cross2(p.tout, q.tin)) < 1e-12 && p.tout.dot(q.tin) > 0;
+  return a.centre == b.centre && a.r1 == b.r1 && a.r2 == b.r2 && a.axis == b.axis;
+}
+
+Vec3 contact_vector(const OffsetElements& el, const Region& g, const Vec2& x, const Level& lv) {
+  const Vec3 c(x.x(), x.y(), lv.zc);
+  Vec3 p = c;
+  switch (g.kind) {
+    case RegionKind::kFacet:
+      return el.facet_normal[g.index];
+    case RegionKind::kEdge: {
+      double t = 0;
+      region_phi(g, x, lv, nullptr, &t);
+      p = g.a + t * g.d;
+      break;
+    }
+    case RegionKind::kVertex:
+      p = Vec3(g.c.x(), g.c.y(), g.vz);
+      break;
+  }
+  p.z() = std::min(p.z(), lv.zc);  // shadow: the vertical below the element, at the level
+  const Vec3 d = c - p;
+  const double n = d.norm();
+  return n > 0 ? Vec3(d / n) : Vec3(0, 0, 1);
+}
+
+const Region& region_of(const std::vector<Region>& regions, std::uint32_t element) {
+  const auto it = std::lower_bound(regions.begin(), regions.end(), element,
+                                   [](const Region& g, std::uint32_t e) { return g.element < e; });
+  return *it;
+}
+
+// Emits one closed loop of kept pieces as a contour.
+void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
+               const std::vector<Curve>& curves, const std::vector<KeptPiece>& kept,
+               const std::vector<std::uint32_t>& seq, ZLevelResult& out) {
+  std::vector<RawSeg> raw;
+  raw.reserve(seq.size());
+  for (std::uint32_t k : seq) raw.push_back(raw_seg(curves[kept[k].curve], kept[k]));
+  // Merge runs of one element's curve, cyclically.
+  const std::size_t n = raw.size();
+  std::size_t first = 0;
+  while (first < n && mergeable(raw[(first + n - 1) % n], raw[first])) ++first;
+  std::vector<RawSeg> segs;
+  if (first == n) first = 0;  // one closed curve (a full circle)
+  for (std::size_t i = 0; i < n; ++i) {
+    const RawSeg& r = raw[(first + i) % n];
+    if (!segs.empty() && mergeable(segs.back(), r) && !(i == 0)) {
+      RawSeg& m = segs.back();
+      m.seg.b = r.seg.b;
+      m.seg.t1 += r.seg.t1 - r.seg.t0;
+      m.tout = r.tout;
+    } else {
+      segs.push_back(r);
+    }
+  }
+  // Elliptic arcs within tol::kZLevelFlatArc of their chord become lines.
+  for (RawSeg& r : segs) {
+    ContourSeg& s = r.seg;
+    if (s.kind != ContourSegKind::kEllipseArc) continue;
+    const Vec2 ch = s.b - s.a;
+    const double len = ch.norm();
+    if (len > 0 && std::abs(cross2(ch, seg_point(s, 0.5) - s.a)) < tol::kZLevelFlatArc * len &&
+        std::abs(s.t1 - s.t0) < kPi / 2) {
+      s.kind = ContourSegKind::kLine;
+      s.centre = Vec2::Zero();
+      s.r1 = s.r2 = s.t0 = s.t1 = 0;
+      s.axis = Vec2(1, 0);
+    }
+  }
+  // Canonical start: the lowest start point (x, then y), then the lowest element.
+  std::size_t start = 0;
+  for (std::size_t i = 1; i < segs.size(); ++i) {
+    const ContourSeg &a = segs[i].seg, &b = segs[start].seg;
+    if (a.a.x() < b.a.x() || (a.a.x() == b.a.x() &&
+                              (a.a.y() < b.a.y() || (a.a.y() == b.a.y() && a.element < b.element))))
+      start = i;
+  }
+  std::rotate(segs.begin(), segs.begin() + std::ptrdiff_t(start), segs.end());
+  ZContour c;
+  const std::size_t m = segs.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const RawSeg &prev = segs[(i + m - 1) % m], &cur = segs[i];
+    c.segs.push_back(cur.seg);
+    if (prev.seg.element == cur.seg.element) continue;
+    ZJunction j;
+    j.seg = std::uint32_t(i);
+    j.position = Vec3(cur.seg.a.x(), cur.seg.a.y(), out.tip_z);
+    j.e1 = prev.seg.element;
+    j.e2 = cur.seg.element;
+    const double ang = std::atan2(cross2(prev.tout, cur.tin), prev.tout.dot(cur.tin));
+    if (std::abs(ang) <= tol::kJunctionTangentAngle) {
+      j.kind = JunctionKind::kTangent;
+    } else if (ang < 0) {
+      j.kind = JunctionKind::kSharpConcave;
+    } else {
+      j.kind = JunctionKind::kConvex;
+      ++out.stats.convex_junctions;
+    }
+    j.b1 = contact_vector(el, region_of(regions, j.e1), cur.seg.a, lv);
+    j.b2 = contact_vector(el, region_of(regions, j.e2), cur.seg.a, lv);
+    c.junctions.push_back(j);
+  }
+  // Signed area: the polygon of the end points plus each arc's cap r1 r2 (dt - sin dt) / 2.
+  const Vec2 o = c.segs[0].a;
+  double area = 0;
+  for (const ContourSeg& s : c.segs) {
+    area += 0.5 * cross2(s.a - o, s.b - o);
+    if (s.kind != ContourSegKind::kLine) {
+      const double dt = s.t1 - s.t0;
+      area += 0.5 * s.r1 * s.r2 * (dt - std::sin(dt));
+    }
+  }
+  c.area = area;
+  c.hole = area < 0;
+  out.contours.push_back(std::move(c));
+}
+
+}  // namespace
+
+void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
+                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
+                 ZLevelResult& out) {
+  const auto n = std::uint32_t(kept.size());
+  // Cluster the ends within `link`.
+  std::vector<Vec2> pts(2 * std::size_t(n));
+  for (std::uint32_t k = 0; k < n; ++k) {
+    pts[2 * k] = kept[k].a;
+    pts[2 * k + 1] = kept[k].b;
+  }
+  std::vector<std::uint32_t> order(pts.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return pts[a].x() != pts[b].x() ? pts[a].x() < pts[b].x() : a < b;
+  });
+  Dsu dsu(pts.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t j = i + 1; j < order.size() && pts[order[j]].x() - pts[order[i]].x() <= link;
+         ++j)
+      if ((pts[order[j]] - pts[order[i]]).norm() <= link) dsu.unite(order[i], order[j]);
+  std::vector<std::uint32_t> cl(pts.size());
+  for (std::uint32_t i = 0; i < pts.size(); ++i) cl[i] = dsu.find(i);
+  // Pieces whose ends fall together are slivers (shorter than `link`).
+  std::vector<std::uint8_t> dead(n, 0);
+  for (std::uint32_t k = 0; k < n; ++k) dead[k] = cl[2 * k] == cl[2 * k + 1];
+  // Per cluster: pieces ending there (in) and starting there (out).
+  std::vector<std::uint32_t> ins_start(pts.size() + 1, 0), outs_start(pts.size() + 1, 0);
+  for (std::uint32_t k = 0; k < n; ++k)
+    if (!dead[k]) {
+      ++ins_start[cl[2 * k + 1] + 1];
+      ++outs_start[cl[2 * k] + 1];
+    }
+  for (std::size_t i = 1; i < ins_start.size(); ++i) {
+    ins_start[i] += ins_start[i - 1];
+    outs_start[i] += outs_start[i - 1];
+  }
+  std::vector<std::uint32_t> ins(ins_start.back()), outs(outs_start.back());
+  {
+    auto fi = ins_start, fo = outs_start;
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (!dead[k]) {
+        ins[fi[cl[2 * k + 1]]++] = k;
+        outs[fo[cl[2 * k]]++] = k;
+      }
+  }
+  std::vector<std::uint32_t> next(n, kNone);
+  std::vector<std::uint8_t> claimed(n, 0);
+  for (std::size_t c = 0; c < pts.size(); ++c) {
+    const std::uint32_t i0 = ins_start[c], i1 = ins_start[c + 1];
+    const std::uint32_t o0 = outs_start[c], o1 = outs_start[c + 1];
+    if (i1 - i0 == 1 && o1 - o0 == 1) {
+      next[ins[i0]] = outs[o0];
+      continue;
+    }
+    // Several loops touch here: leave along the first edge clockwise from the way back, so
+    // that each loop keeps U on its left without crossing another.
+    for (std::uint32_t a = i0; a < i1; ++a) {
+      const KeptPiece& pin = kept[ins[a]];
+      const Vec2 back = -unit(curve_tangent(curves[pin.curve], pin.s1));
+      std::uint32_t best = kNone;
+      double best_a = INFINITY;
+      for (std::uint32_t b = o0; b < o1; ++b) {
+        if (claimed[outs[b]]) continue;
+        const KeptPiece& po = kept[outs[b]];
+        const double ang = cw_angle(back, unit(curve_tangent(curves[po.curve], po.s0)));
+        if (ang < best_a) {
+          best_a = ang;
+          best = outs[b];
+        }
+      }
+      if (best != kNone) {
+        claimed[best] = 1;
+        next[ins[a]] = best;
+      }
+    }
+  }
+  // Trace.
+  std::vector<std::uint8_t> visited(n, 0);
+  std::vector<std::uint32_t> seq;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    if (dead[k] || visited[k]) continue;
+    seq.clear();
+    std::uint32_t cur = k;
+    bool closed = false;
+    while (true) {
+      visited[cur] = 1;
+      seq.push_back(cur);
+      const std::uint32_t nx = next[cur];
+      if (nx == k) {
+        closed = true;
+        break;
+      }
+      if (nx == kNone || visited[nx]) break;
+      cur = nx;
+    }
+    if (!closed) {
+      ++out.stats.open_chains;
+      continue;
+    }
+    emit_loop(el, lv, regions, curves, kept, seq, out);
+  }
+  std::sort(out.contours.begin(), out.contours.end(), [](const ZContour& a, const ZContour& b) {
+    const Vec2 &p = a.segs[0].a, &q = b.segs[0].a;
+    if (p.x() != q.x()) return p.x() < q.x();
+    if (p.y() != q.y()) return p.y() < q.y();
+    return a.segs[0].element < b.segs[0].element;
+  });
+}
+
+}  // namespace zlevel_detail
+
+Vec2 seg_point(const ContourSeg& s, double f) {
+  if (f <= 0) return s.a;
+  if (f >= 1) return s.b;
+  if (s.kind == ContourSegKind::kLine) return s.a + f * (s.b - s.a);
+  // From a, with differences of cos and sin as products (no far-away centre).
+  const double d = f * (s.t1 - s.t0), h = std::sin(0.5 * d), tm = s.t0 + 0.5 * d;
+  const Vec2 pa(-s.axis.y(), s.axis.x());
+  return s.a + (-2 * std::sin(tm) * h * s.r1) * s.axis + (2 * std::cos(tm) * h * s.r2) * pa;
+}
+
+void discretise(const ContourSeg& s, double chord_tol, std::vector<Vec2>& out) {
+  out.push_back(s.a);
+  if (s.kind == ContourSegKind::kLine) return;
+  const double rmax = std::max(s.r1, s.r2), sweep = std::abs(s.t1 - s.t0);
+  if (!(rmax > chord_tol) || !(chord_tol > 0)) return;
+  const double step = 2 * std::acos(1 - chord_tol / rmax);
+  const int n = int(std::min(1e6, std::ceil(sweep / step)));
+  for (int i = 1; i < n; ++i) out.push_back(seg_point(s, double(i) / n));
+}
+
+}  // namespace ncpath
