@@ -2,11 +2,12 @@
 // time, planes/s, exact segments/s and peak RSS, against the raster drop-cutter measured in
 // the same run at the equivalent accuracy: the sample step the raster needs so that its
 // straight moves stay within the scan's tolerance of the CL curve (adaptive sampling to the
-// same tolerance, with the scan's point count as a reference).
+// same tolerance, with the scan's point count as a reference). Then z-level contouring at a
+// step-down (engine/zlevel.hpp): levels, contours, time.
 //
 //   ncpath_scan_throughput [--mesh PATH --fit-xy MM] [--tool ball:5] [--interval 0.5,0.1]
 //                          [--families x|y|both] [--tolerance 0.001] [--threads 2]
-//                          [--no-raster]
+//                          [--no-raster] [--step-down 0.5]
 //
 // Without --mesh: bunny00 from datasets/cache/meshes, fit to 200 mm.
 #include <CLI/CLI.hpp>
@@ -19,6 +20,7 @@
 #include "engine/parallel.hpp"
 #include "engine/raster.hpp"
 #include "engine/scan.hpp"
+#include "engine/zlevel.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
 
 using namespace ncpath;
@@ -30,6 +32,7 @@ int main(int argc, char** argv) {
   std::vector<double> intervals = {0.5, 0.1};
   int threads = 2;
   bool no_raster = false;
+  double step_down = 0.5;
   app.add_option("--mesh", mesh_path, "Mesh (default: bunny00 from datasets/cache/meshes)");
   app.add_option("--fit-xy", fit_xy, "Fit the longest xy side to this many mm (0 = no)");
   app.add_option("--tool", tool_text);
@@ -38,6 +41,7 @@ int main(int argc, char** argv) {
   app.add_option("--tolerance", tolerance);
   app.add_option("--threads", threads);
   app.add_flag("--no-raster", no_raster, "Skip the raster comparison");
+  app.add_option("--step-down", step_down, "Z-level step-down, mm (0 = no z-level run)");
   CLI11_PARSE(app, argc, argv);
   if (mesh_path.empty())
     mesh_path = std::string(NCPATH_SOURCE_DIR) + "/datasets/cache/meshes/bunny00.off";
@@ -103,6 +107,23 @@ int main(int argc, char** argv) {
                 interval, "raster", (unsigned long long)planes, "-", (unsigned long long)points,
                 "-", seconds, planes / seconds, "-", peak_rss_bytes() / 1048576.0,
                 (st.compute_s + st.elements_s) / seconds);
+  }
+  if (step_down > 0) {
+    ZLevelOpParams zp;
+    zp.step_down = step_down;
+    zp.tolerance = tolerance;
+    RunControl control;
+    const ZLevelOpStats zs = run_zlevel(in.mesh, tool, zp, [](const ZLevelChunk&) {}, control);
+    std::printf("z-level step-down %g: %llu levels, %llu contours (%llu holes), %llu segments, "
+                "%llu junctions (sharp concave %llu), %llu points, open chains %llu\n"
+                "          elements %.3f s, compute %.3f s, %.1f levels/s, %.0f candidates/level, "
+                "RSS %.1f MB\n",
+                step_down, (unsigned long long)zs.levels, (unsigned long long)zs.contours,
+                (unsigned long long)zs.holes, (unsigned long long)zs.segments,
+                (unsigned long long)zs.junctions, (unsigned long long)zs.sharp_concave,
+                (unsigned long long)zs.points, (unsigned long long)zs.open_chains, zs.elements_s,
+                zs.compute_s, zs.levels / zs.compute_s, double(zs.candidates) / zs.levels,
+                peak_rss_bytes() / 1048576.0);
   }
   return 0;
 }

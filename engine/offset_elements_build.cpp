@@ -6,6 +6,7 @@
 #include <span>
 
 #include "engine/parallel.hpp"
+#include "kernels/cutters/drop_cutter.hpp"
 #include "kernels/geom/tolerance.hpp"
 
 namespace ncpath {
@@ -98,6 +99,27 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
 
   collect_vertices(el);
   return el;
+}
+
+ElementRef element_ref(const OffsetElements& el, std::uint32_t e) {
+  ElementRef r;
+  if (e >= el.element_count()) return r;  // kNoElement: the floor
+  if (e < el.facet_count()) return {0, el.facet_source[e], -1};
+  e -= std::uint32_t(el.facet_count());
+  if (e < el.edge_count()) return {1, el.edge_vertices[e][0], el.edge_vertices[e][1]};
+  e -= std::uint32_t(el.edge_count());
+  return {2, el.vertex_source[e], -1};
+}
+
+std::uint8_t contact_code(const OffsetElements& el, std::uint32_t e) {
+  ContactKind k = ContactKind::kVertex;
+  if (e >= el.element_count())
+    k = ContactKind::kNone;
+  else if (e < el.facet_count())
+    k = ContactKind::kFacet;
+  else if (e < el.facet_count() + el.edge_count())
+    k = ContactKind::kEdge;
+  return std::uint8_t(k);
 }
 
 OffsetElements mirror_xy(const OffsetElements& in) {

@@ -9,6 +9,17 @@
 
 namespace ncpath {
 
+// The mesh element behind an offset element id, for output: kind (0 facet, 1 edge, 2 vertex,
+// 3 none: the floor) and mesh indices (facet index, -1; the edge's two vertex indices;
+// vertex index, -1; -1, -1).
+struct ElementRef {
+  std::int64_t kind = 3, a = -1, b = -1;
+};
+ElementRef element_ref(const OffsetElements& el, std::uint32_t id);
+
+// The drop-cutter contact kind code (ContactKind: facet, edge, vertex; none for the floor).
+std::uint8_t contact_code(const OffsetElements& el, std::uint32_t id);
+
 // For every vertex, the lowest index of the vertices with exactly the same coordinates.
 std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& vertices);
 

@@ -53,23 +53,6 @@ struct PlaneOut {
   EnvelopeCounters counters;
 };
 
-ContactKind contact_of(const OffsetElements& el, std::uint32_t e) {
-  if (e == kNoElement) return ContactKind::kNone;
-  if (e < el.facet_count()) return ContactKind::kFacet;
-  if (e < el.facet_count() + el.edge_count()) return ContactKind::kEdge;
-  return ContactKind::kVertex;
-}
-
-ScanElementRef element_ref(const OffsetElements& el, std::uint32_t e) {
-  ScanElementRef r;
-  if (e == kNoElement) return r;
-  if (e < el.facet_count()) return {0, el.facet_source[e], -1};
-  e -= std::uint32_t(el.facet_count());
-  if (e < el.edge_count()) return {1, el.edge_vertices[e][0], el.edge_vertices[e][1]};
-  e -= std::uint32_t(el.edge_count());
-  return {2, el.vertex_source[e], -1};
-}
-
 // Pieces of the plane at v clipped to [u0, u1], plus the floor; envelope and curve.
 void scan_plane(const Family& fam, double v, double u0, double u1, double floor_z,
                 std::vector<std::uint32_t>& ids, PlaneOut& out) {
@@ -111,7 +94,7 @@ void polyline_between(const Family& fam, const PlaneOut& plane, double a, double
     }
     const std::size_t before = raw.size();
     discretise_segment(pc, c, tolerance, raw, lift);
-    kinds.resize(raw.size(), std::uint8_t(contact_of(fam.el, pc.element)));
+    kinds.resize(raw.size(), contact_code(fam.el, pc.element));
     (void)before;
   }
   // End point: the last segment's end (clipped).
@@ -120,7 +103,7 @@ void polyline_between(const Family& fam, const PlaneOut& plane, double a, double
     const double x = std::min(it->x1, b);
     raw.emplace_back(x, tip_z(plane.pieces[it->piece], x));
     lift.push_back(0);
-    kinds.push_back(std::uint8_t(contact_of(fam.el, plane.pieces[it->piece].element)));
+    kinds.push_back(contact_code(fam.el, plane.pieces[it->piece].element));
     break;
   }
   pts.resize(raw.size());

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "engine/cl_chunk.hpp"
+#include "engine/offset_elements_build.hpp"
 #include "engine/run_control.hpp"
 #include "kernels/cutters/cutter.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
@@ -55,11 +56,8 @@ std::string validate(const ScanParams& params);
 // Segment kinds stored per exact segment: the PieceKind values (plane_slice.hpp) and:
 inline constexpr std::uint8_t kScanSegmentVertical = 6;
 
-// Element of the mesh a segment or junction belongs to: kind (0 facet, 1 edge, 2 vertex,
-// 3 floor) and mesh indices (facet index; edge's two vertex indices; vertex index; -1).
-struct ScanElementRef {
-  std::int64_t kind = 3, a = -1, b = -1;
-};
+// Element of the mesh a segment or junction belongs to (engine/offset_elements_build.hpp).
+using ScanElementRef = ElementRef;
 
 // Exact data of one chunk of cut paths. Segments and junctions are in cutting order;
 // `path` is the cut path's index within the job (0, 1, ... over all cut paths).

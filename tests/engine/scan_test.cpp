@@ -9,16 +9,18 @@
 #include <filesystem>
 #include <random>
 
-#include "batch/io/mesh_reader.hpp"
 #include "engine/drop_index.hpp"
 #include "engine/parallel.hpp"
 #include "engine/scan.hpp"
-#include "kernels/mesh/mesh_transform.hpp"
 #include "kernels/scan/envelope.hpp"
+#include "tests/engine/mesh_test_support.hpp"
 #include "tests/kernels/scan/scan_test_support.hpp"
 
 namespace ncpath {
 namespace {
+
+using test_meshes::load;
+using test_meshes::terrain;
 
 struct Collected {
   ClChunk cl;
@@ -91,22 +93,6 @@ int check_segments(const Collected& c, double floor_z, std::mt19937_64& rng, int
     ++n;
   }
   return n;
-}
-
-TriangleMesh terrain(std::mt19937_64& rng, int n) {
-  std::uniform_real_distribution<double> h(0, 6), jitter(-0.4, 0.4);
-  TriangleMesh m;
-  const double step = 40.0 / (n - 1);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      m.vertices.emplace_back(i * step + jitter(rng), j * step + jitter(rng), h(rng));
-  auto id = [n](int i, int j) { return std::uint32_t(j * n + i); };
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
 }
 
 TEST(Scan, TerrainSegmentsEqualDropCutterAndPolylinesNeverGouge) {
@@ -201,18 +187,6 @@ TEST(Scan, RejectsBadInput) {
 }
 
 // ---- real meshes ----
-
-TriangleMesh load(const std::string& name) {
-  const std::filesystem::path p =
-      std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes" / (name + ".off");
-  if (!std::filesystem::exists(p))
-    throw std::runtime_error(p.string() + " is missing: run datasets/fetch-cgal-meshes.sh");
-  io::MeshReadResult r = io::read_mesh(p);
-  MeshTransform t;
-  t.fit_xy_mm = 200;
-  EXPECT_TRUE(apply_transform(t, r.mesh).ok());
-  return std::move(r.mesh);
-}
 
 class ScanRealMesh : public testing::TestWithParam<const char*> {};
 
