@@ -1,0 +1,102 @@
+// Curve-based scanning kernels (issue 5) on real meshes (datasets/cache/meshes, fit to
+// 200 mm, ball D = 5): one drive plane (slice the trimmed offset elements it reaches, upper
+// envelope, CL curve) through the middle of bunny00 and fandisk, and one z-level contour at
+// mid height, single-threaded. The plane benchmarks compare trimmed elements (the engine's
+// choice) with whole cylinders and spheres: same curve, far more pieces.
+// Counters: pieces, envelope decisions, segments / contours of the last iteration.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "batch/io/mesh_reader.hpp"
+#include "engine/offset_elements_build.hpp"
+#include "kernels/mesh/mesh_transform.hpp"
+#include "kernels/scan/envelope.hpp"
+#include "kernels/scan/zlevel.hpp"
+
+namespace ncpath {
+namespace {
+
+struct Prepared {
+  TriangleMesh mesh;
+  OffsetElements el;
+  PlaneIndex index;
+  Aabb3 box;
+};
+
+const Prepared& prepared(const std::string& name) {
+  static std::map<std::string, Prepared> cache;
+  auto it = cache.find(name);
+  if (it != cache.end()) return it->second;
+  Prepared p;
+  io::MeshReadResult r = io::read_mesh(std::filesystem::path(NCPATH_SOURCE_DIR) /
+                                       "datasets/cache/meshes" / (name + ".off"));
+  MeshTransform t;
+  t.fit_xy_mm = 200;
+  apply_transform(t, r.mesh);
+  p.mesh = std::move(r.mesh);
+  p.el = build_offset_elements_parallel(p.mesh, 2.5, false);
+  p.index = build_plane_index(p.el);
+  p.box = bounding_box(p.mesh);
+  return cache.emplace(name, std::move(p)).first->second;
+}
+
+void BM_ScanPlane(benchmark::State& state, const std::string& name, bool trim) {
+  const Prepared& p = prepared(name);
+  const double y0 = 0.5 * (p.box.lo.y() + p.box.hi.y()) + 0.123;
+  std::vector<std::uint32_t> ids;
+  std::vector<SlicePiece> pieces;
+  std::vector<EnvelopeSpan> spans;
+  PlaneCurve curve;
+  EnvelopeCounters cnt;
+  for (auto _ : state) {
+    ids.clear();
+    pieces.clear();
+    if (trim) {
+      p.index.query(y0, ids);
+      for (std::uint32_t id : ids) slice_elements(p.el, y0, id, id + 1, pieces, true);
+    } else {
+      for (std::uint32_t id = 0; id < p.el.element_count(); ++id)
+        if (element_reachable(p.el, id)) slice_elements(p.el, y0, id, id + 1, pieces, false);
+    }
+    pieces.push_back(floor_piece(p.box.lo.z(), 2.5, y0, p.box.lo.x(), p.box.hi.x()));
+    cnt = {};
+    upper_envelope(pieces, spans, &cnt);
+    plane_curve(pieces, spans, curve);
+    benchmark::DoNotOptimize(curve.segments.data());
+  }
+  state.counters["pieces"] = double(pieces.size());
+  state.counters["decisions"] = double(cnt.decisions);
+  state.counters["segments"] = double(curve.segments.size());
+}
+
+void BM_ZLevel(benchmark::State& state, const std::string& name) {
+  const Prepared& p = prepared(name);
+  std::vector<std::uint32_t> all(p.el.facet_count() + p.el.edge_count());
+  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const double z = 0.5 * (p.box.lo.z() + p.box.hi.z()) + 0.0123;
+  ZLevelResult r;
+  for (auto _ : state) {
+    r = zlevel_contours(p.el, all, z);
+    benchmark::DoNotOptimize(r.contours.data());
+  }
+  state.counters["contours"] = double(r.contours.size());
+  state.counters["candidates"] = double(r.stats.candidates);
+  state.counters["open_chains"] = double(r.stats.open_chains);
+}
+
+BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_trimmed, std::string("bunny00"), true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_whole, std::string("bunny00"), false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScanPlane, fandisk_trimmed, std::string("fandisk"), true)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ScanPlane, fandisk_whole, std::string("fandisk"), false)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevel, bunny00_mid, std::string("bunny00"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevel, fandisk_mid, std::string("fandisk"))->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace ncpath
