@@ -275,6 +275,60 @@ TEST(Envelope, LyingCylindersGiveLinesAndEllipses) {
   }
 }
 
+// A UV sphere of radius rho (vertices on the sphere), upper half, centre (10, 10, 0).
+TriangleMesh uv_hemisphere(double rho, int rings, int sectors) {
+  TriangleMesh m;
+  m.vertices.emplace_back(10, 10, rho);  // pole
+  for (int i = 1; i <= rings; ++i) {
+    const double th = 0.5 * M_PI * i / rings;
+    for (int j = 0; j < sectors; ++j) {
+      const double ph = 2 * M_PI * j / sectors;
+      m.vertices.emplace_back(10 + rho * std::sin(th) * std::cos(ph),
+                              10 + rho * std::sin(th) * std::sin(ph), rho * std::cos(th));
+    }
+  }
+  auto id = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * sectors + (j % sectors)); };
+  for (int j = 0; j < sectors; ++j) m.facets.push_back({0, id(1, j), id(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+TEST(Envelope, SphereIsSmoothAndBetweenItsBounds) {
+  // Over a convex faceted sphere the CL curve has no sharp-concave point above the floor,
+  // and the ball centre stays between rho cos(a) + R and rho + R from the sphere's centre
+  // (a: the largest angle between a facet's normal and its vertices, so the facets lie
+  // between the spheres of radius rho cos(a) and rho).
+  const double rho = 10, R = 2.5;
+  const TriangleMesh mesh = uv_hemisphere(rho, 24, 64);
+  double cos_a = 1;
+  for (const auto& f : mesh.facets) {
+    const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    for (const Vec3& p : {a, b, c})
+      cos_a = std::min(cos_a, std::abs(n.dot((p - Vec3(10, 10, 0)).normalized())));
+  }
+  const OffsetElements el = build_offset_elements(mesh, R);
+  for (double y0 : {10.0, 13.7}) {
+    const PlaneResult r = scan_plane(el, y0, -R, -5, 25);
+    for (const CurveJunction& j : r.curve.junctions)
+      if (j.kind == JunctionKind::kSharpConcave) {
+        EXPECT_TRUE(j.element1 == kNoElement || j.element2 == kNoElement)
+            << "concave point on the sphere at x " << j.x;
+      }
+    for (double x = 10 - 9; x <= 10 + 9; x += 0.37) {
+      const double z = curve_z(r, x) + R;  // ball centre
+      const double d = (Vec3(x, y0, z) - Vec3(10, 10, 0)).norm();
+      if (z < R) continue;  // on the floor
+      EXPECT_LE(d, rho + R + 1e-9) << "x " << x;
+      EXPECT_GE(d, rho * cos_a + R - 1e-9) << "x " << x;
+    }
+  }
+}
+
 TEST(Envelope, DiscretisationIsAboveAndWithinTolerance) {
   std::mt19937_64 rng(11);
   const TriangleMesh mesh = random_terrain(rng, 9);
