@@ -40,9 +40,11 @@ namespace {
 // One family's offset elements (in its frame: planes y = v, lines along x = u) and the index
 // that finds the elements reaching a plane.
 struct Family {
-  OffsetElements el;
-  PlaneIndex index;
+  const OffsetElements& el;
+  const PlaneIndex& index;
 };
+
+Family family(const ScanElements& se, int f) { return {se.el[std::size_t(f)], se.index[std::size_t(f)]}; }
 
 // Everything one plane produces, in the family frame (u, tip z) at v.
 struct PlaneOut {
@@ -137,30 +139,64 @@ std::array<double, 5> segment_geometry(const SlicePiece& pc, const CurveSegment&
 
 }  // namespace
 
+ScanElements build_scan_elements(const TriangleMesh& mesh, double radius) {
+  Stopwatch clock;
+  ScanElements se;
+  se.el[0] = build_offset_elements_parallel(mesh, radius, false);
+  if (se.el[0].facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
+  se.el[1] = mirror_xy(se.el[0]);
+  par::overlap([&] { se.index[0] = build_plane_index(se.el[0]); },
+               [&] { se.index[1] = build_plane_index(se.el[1]); });
+  se.box = bounding_box(mesh);
+  se.mesh_facets = mesh.facets.size();
+  se.build_s = clock.seconds();
+  return se;
+}
+
+std::vector<PlaneJunction> plane_junctions(const ScanElements& se, int f, double v, double u0,
+                                           double u1, double floor_z) {
+  PlaneOut plane;
+  std::vector<std::uint32_t> ids;
+  scan_plane(family(se, f), v, u0, u1, floor_z, ids, plane);
+  std::vector<PlaneJunction> out;
+  for (const CurveJunction& j : plane.curve.junctions) {
+    PlaneJunction pj;
+    auto w = [&](const Vec3& a) { return f == 0 ? a : Vec3(a.y(), a.x(), a.z()); };
+    pj.position = w(Vec3(j.x, v, j.z));
+    pj.b1 = w(j.b1);
+    pj.b2 = w(j.b2);
+    pj.kind = std::uint8_t(j.kind);
+    pj.on_floor = j.element1 == kNoElement || j.element2 == kNoElement;
+    out.push_back(pj);
+  }
+  return out;
+}
+
 ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanParams& p,
                    const std::function<void(const ScanChunk&)>& sink, RunControl& control) {
   if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: curve-based scanning needs a ball-end mill");
   if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
+  const ScanElements se = build_scan_elements(mesh, cutter.radius);
+  return run_scan(se, cutter, p, sink, control);
+}
+
+ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParams& p,
+                   const std::function<void(const ScanChunk&)>& sink, RunControl& control) {
+  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
+  if (cutter.type != CutterType::kBall || cutter.radius != se.el[0].radius)
+    throw std::invalid_argument("tool: curve-based scanning needs the ball the elements are for");
+  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
   ScanStats st;
-  const double R = cutter.radius;
+  const std::array<Family, 2> fam = {family(se, 0), family(se, 1)};
+  st.elements_s = se.build_s;
+  st.facets = se.el[0].facet_count();
+  st.edges = se.el[0].edge_count();
+  st.vertices = se.el[0].vertex_count();
+  st.facets_degenerate = se.mesh_facets - st.facets;
 
-  // Both families' elements: the second is needed for the side links even for one family.
-  Stopwatch el_clock;
-  std::array<Family, 2> fam;
-  fam[0].el = build_offset_elements_parallel(mesh, R, false);
-  if (fam[0].el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
-  fam[1].el = mirror_xy(fam[0].el);
-  par::overlap([&] { fam[0].index = build_plane_index(fam[0].el); },
-               [&] { fam[1].index = build_plane_index(fam[1].el); });
-  st.elements_s = el_clock.seconds();
-  st.facets = fam[0].el.facet_count();
-  st.edges = fam[0].el.edge_count();
-  st.vertices = fam[0].el.vertex_count();
-  st.facets_degenerate = mesh.facets.size() - st.facets;
-
-  const Aabb3 box = bounding_box(mesh);
+  const Aabb3& box = se.box;
   std::array<double, 4> rect = p.rect.value_or(std::array<double, 4>{
       box.lo.x() - p.margin, box.lo.y() - p.margin, box.hi.x() + p.margin, box.hi.y() + p.margin});
   st.rect = rect;

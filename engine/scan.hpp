@@ -107,8 +107,34 @@ struct ScanStats {
   double sink_s = 0;
 };
 
+// Offset elements of both plane families (family 1: x and y exchanged) with their plane
+// indices: built once per mesh and ball radius, then shared read-only.
+struct ScanElements {
+  std::array<OffsetElements, 2> el;
+  std::array<PlaneIndex, 2> index;
+  Aabb3 box;                    // the mesh's
+  std::size_t mesh_facets = 0;  // facets in the mesh (including degenerate ones)
+  double build_s = 0;
+};
+// Throws std::invalid_argument when the mesh has no usable facet.
+ScanElements build_scan_elements(const TriangleMesh& mesh, double radius);
+
 // The cutter must be a ball. Throws Cancelled, std::invalid_argument for bad params.
 ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanParams& params,
                    const std::function<void(const ScanChunk&)>& sink, RunControl& control);
+// The same over prebuilt elements (their radius must be the cutter's).
+ScanStats run_scan(const ScanElements& elements, const Cutter& cutter, const ScanParams& params,
+                   const std::function<void(const ScanChunk&)>& sink, RunControl& control);
+
+// Junctions of one plane's exact CL curve (family 0: plane y = v, u along x; family 1: plane
+// x = v, u along y) over u in [u0, u1] above floor_z, in the world frame: position (tool
+// tip), unit b1, b2 in the direction of increasing u, kind (JunctionKind).
+struct PlaneJunction {
+  Vec3 position = Vec3::Zero(), b1 = Vec3::Zero(), b2 = Vec3::Zero();
+  std::uint8_t kind = 0;
+  bool on_floor = false;  // one side is the floor, not the part
+};
+std::vector<PlaneJunction> plane_junctions(const ScanElements& elements, int family, double v,
+                                           double u0, double u1, double floor_z);
 
 }  // namespace ncpath

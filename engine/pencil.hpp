@@ -1,0 +1,89 @@
+#pragma once
+// Pencil-cut clean-up of concave creases with a ball-end mill (issue 6, seed method 3,
+// section 3), on the curve-based scans of issue 5.
+//
+// Stages (each timed):
+//   1. candidates: the sharp-concave junctions of the exact CL curves of both drive-plane
+//      families (engine/scan.hpp) at `interval`, and of the z-level contours
+//      (engine/zlevel.hpp) at `step_down` (near-vertical creases cross no drive plane);
+//      junctions with the floor are not creases of the part and are left out;
+//   2. pencil points: candidates whose 3-D bi-contact angle (between b1 and b2) is at least
+//      `min_angle`; each is kept in the family whose layers its crease crosses most steeply
+//      (kernels/cleanup/pencil.hpp, pencil_keep);
+//   3. tracing: pencil points on consecutive layers of a family linked along their crease
+//      tangents (b1 x b2) into chains; a chord A -> B whose error bound
+//      h = d sin(thA) sin(thB) / sin(thA + thB) exceeds `tolerance` is refined by the exact
+//      crease point on an intermediate drive plane (the local intersection of the two offset
+//      elements, found by the exact envelope of that plane near the chord), recursively;
+//   4. safety: every chord is checked against the point drop-cutter (Embree, exact in
+//      double) at samples no more than `tolerance`-derived spacing apart and lifted where it
+//      would dip below the CL surface, so the path never gouges;
+//   5. pieces closer than `merge_distance` end to end are joined, pieces shorter than
+//      `min_length` dropped, and the rest ordered and oriented greedily to shorten the air
+//      moves between them.
+// Output: one cut path per piece (tool tip, mm), a rapid before every piece but the first,
+// and the pencil points with their bi-contact vectors and angle.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/cl_chunk.hpp"
+#include "engine/run_control.hpp"
+#include "kernels/cutters/cutter.hpp"
+#include "kernels/geom/vec.hpp"
+#include "kernels/mesh/triangle_mesh.hpp"
+
+namespace ncpath {
+
+struct PencilParams {
+  double interval = 0.5;        // mm between drive planes (both families)
+  double step_down = 1.0;       // mm between z-levels for near-vertical creases (0: none)
+  double min_angle_deg = 20;    // bi-contact angle threshold, degrees
+  double tolerance = 0.01;      // mm: chord error bound and drop-cutter check
+  double merge_distance = 0;    // mm; 0: 2 * interval
+  double min_length = 1.0;      // mm: shorter pieces are dropped
+  double margin = 0;            // mm around the part's xy box (scanned rectangle)
+  std::optional<double> floor_z;  // mm; default: the part's lowest z
+};
+
+// Empty when usable; else a message naming the bad key.
+std::string validate(const PencilParams& params);
+
+struct PencilPoint {
+  Vec3 position = Vec3::Zero();  // tool tip, mm
+  Vec3 b1 = Vec3::Zero(), b2 = Vec3::Zero();
+  double angle = 0;            // rad between b1 and b2
+  std::uint8_t family = 0;     // 0 x lines, 1 y lines, 2 z-levels
+  std::uint8_t kept = 0;       // 1: traced in this family (pencil_keep)
+};
+
+struct PencilStats {
+  std::uint64_t planes = 0, levels = 0;
+  std::uint64_t candidates = 0;     // sharp-concave junctions seen
+  std::uint64_t pencil_points = 0;  // with angle >= min_angle
+  std::uint64_t kept_points = 0;    // after the family choice
+  std::uint64_t chains = 0;         // linked chains before merging
+  std::uint64_t refined_points = 0;  // exact crease points added by refinement
+  std::uint64_t lifted_points = 0;   // path points raised by the drop-cutter check
+  std::uint64_t paths = 0;           // pieces cut
+  double traced_length = 0;          // mm, cut length of the pieces
+  double air_length = 0;             // mm, straight distance between consecutive pieces
+  double elements_s = 0, scan_s = 0, zlevel_s = 0, link_s = 0, refine_s = 0, check_s = 0;
+};
+
+struct PencilResult {
+  std::vector<std::vector<Vec3>> paths;  // in cutting order, tool tip, mm
+  std::vector<PencilPoint> points;       // every pencil point (angle >= threshold)
+  PencilStats stats;
+};
+
+// The cutter must be a ball. Throws Cancelled, std::invalid_argument for bad params.
+PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& params,
+                        RunControl& control);
+
+// The result as CL paths (a rapid one-point path before every piece but the first).
+ClChunk pencil_chunk(const PencilResult& result);
+
+}  // namespace ncpath

@@ -1,0 +1,182 @@
+// Pencil-cut (engine/pencil.hpp): analytic creases. A V-groove z = a |x| gives one pencil
+// path along its floor at the analytic height R (sqrt(1 + a^2) - 1) when its bi-contact
+// angle 2 atan(a) is above the threshold, and none below; a box pocket gives the four
+// floor-wall creases, the four vertical wall-wall creases (found by the z-levels) and, above
+// them, the creases of the rim edges' cylinders, every path point within the tolerance of
+// one of them; a faceted hemisphere (convex) gives none; no path point or chord
+// gouges (brute-force distance from the ball to the mesh).
+#include "engine/pencil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "kernels/cleanup/pencil.hpp"
+#include "tests/kernels/scan/scan_test_support.hpp"
+
+namespace ncpath {
+namespace {
+
+TriangleMesh v_groove(double a) {
+  TriangleMesh m;
+  m.vertices = {{-10, -10, 10 * a}, {0, -10, 0}, {10, -10, 10 * a},
+                {-10, 10, 10 * a},  {0, 10, 0},  {10, 10, 10 * a}};
+  m.facets = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+  return m;
+}
+
+TriangleMesh box_pocket() {
+  TriangleMesh m;
+  const double o = 10, i = 5, top = 3;
+  m.vertices = {{-o, -o, top}, {o, -o, top}, {o, o, top}, {-o, o, top},
+                {-i, -i, top}, {i, -i, top}, {i, i, top}, {-i, i, top},
+                {-i, -i, 0},   {i, -i, 0},   {i, i, 0},   {-i, i, 0}};
+  m.facets = {{0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6},
+              {3, 0, 4}, {3, 4, 7}, {8, 9, 10}, {8, 10, 11},
+              {4, 5, 9}, {4, 9, 8}, {5, 6, 10}, {5, 10, 9}, {6, 7, 11}, {6, 11, 10},
+              {7, 4, 8}, {7, 8, 11}};
+  return m;
+}
+
+// Brute-force: the ball at every path point and along every chord keeps R from the mesh.
+void expect_no_gouge(const TriangleMesh& mesh, const PencilResult& r, double R) {
+  for (const auto& path : r.paths)
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const int n = i + 1 < path.size() ? 8 : 1;
+      for (int s = 0; s < n; ++s) {
+        const Vec3 q = i + 1 < path.size() ? Vec3(path[i] + (path[i + 1] - path[i]) * (s / 8.0))
+                                           : path[i];
+        const Vec3 centre = q + Vec3(0, 0, R);
+        double d = INFINITY;
+        for (const auto& f : mesh.facets)
+          d = std::min(d, scan_test::point_triangle_distance(centre, mesh.vertices[f[0]],
+                                                             mesh.vertices[f[1]],
+                                                             mesh.vertices[f[2]]));
+        // 1e-6 mm: the resolution of the engine's check at walls (pencil.hpp).
+        ASSERT_GE(d, R - 1e-6) << "gouge at " << q.transpose();
+      }
+    }
+}
+
+TEST(Pencil, VGrooveAboveAndBelowTheThreshold) {
+  const double R = 2.5;
+  PencilParams p;
+  p.interval = 0.5;
+  p.step_down = 0;
+  p.min_angle_deg = 30;
+  for (double a : {1.0, 0.5, 0.2}) {
+    const double beta = 2 * std::atan(a) * 180 / std::numbers::pi;  // 90, 53.1, 22.6 degrees
+    RunControl control;
+    const TriangleMesh mesh = v_groove(a);
+    const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+    if (beta < p.min_angle_deg) {
+      EXPECT_TRUE(r.paths.empty()) << "a " << a;
+      EXPECT_EQ(r.stats.pencil_points, 0u);
+      continue;
+    }
+    ASSERT_EQ(r.paths.size(), 1u) << "a " << a;
+    const double z = R * (std::sqrt(1 + a * a) - 1);
+    for (const Vec3& q : r.paths[0]) {
+      EXPECT_NEAR(q.x(), 0, 1e-9);
+      EXPECT_NEAR(q.z(), z, 1e-9);
+    }
+    // Along the whole groove (the x lines cross it every interval over y in [-10, 10]).
+    EXPECT_NEAR(r.stats.traced_length, 20, 1e-6);
+    for (const PencilPoint& pt : r.points)
+      EXPECT_NEAR(pt.angle * 180 / std::numbers::pi, beta, 1e-6);
+    expect_no_gouge(mesh, r, R);
+  }
+}
+
+TEST(Pencil, BoxPocketFloorAndCornerCreases) {
+  const double R = 1.25;
+  PencilParams p;
+  p.interval = 0.5;
+  p.step_down = 0.3;
+  RunControl control;
+  const TriangleMesh mesh = box_pocket();
+  const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+  const double c = 5 - R;  // the ball centre's reach to the walls
+  // Distance from q to the creases of the CL surface: the floor-wall lines (tip z 0, |x| or
+  // |y| = c, the other within c), the vertical corner lines (|x| = |y| = c, tip z from 0 to
+  // 3 - R) and above them the creases of the two rim edges' cylinders (on the diagonal
+  // |x| = |y| = s, tip z = 3 + sqrt(R^2 - (5 - s)^2) - R, s from c to 5), sampled finely.
+  auto crease_distance = [&](const Vec3& q) {
+    const double ax = std::abs(q.x()), ay = std::abs(q.y());
+    double d = INFINITY;
+    for (const Vec2& l : {Vec2(ax, ay), Vec2(ay, ax)})  // floor: |first| = c
+      d = std::min(d, std::hypot(std::hypot(l.x() - c, std::max(0.0, l.y() - c)), q.z()));
+    d = std::min(d, std::hypot(std::hypot(ax - c, ay - c),
+                               std::max({0.0, -q.z(), q.z() - (3 - R)})));
+    for (int k = 0; k <= 20000; ++k) {
+      const double s = c + (5 - c) * k / 20000.0;
+      const double z = 3 + std::sqrt(std::max(0.0, R * R - (5 - s) * (5 - s))) - R;
+      d = std::min(d, (Vec3(ax, ay, q.z()) - Vec3(s, s, z)).norm());
+    }
+    return d;
+  };
+  ASSERT_FALSE(r.paths.empty());
+  double floor_length = 0, corner_length = 0;
+  for (const auto& path : r.paths)
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      EXPECT_LE(crease_distance(path[i]), p.tolerance) << "off the creases: "
+                                                       << path[i].transpose();
+      if (i == 0) continue;
+      const Vec3 d = path[i] - path[i - 1];
+      (std::abs(d.z()) > 1e-9 ? corner_length : floor_length) += d.norm();
+    }
+  // The floor creases form the square of side 2c; the corners rise (z-levels every 0.3 mm).
+  EXPECT_NEAR(floor_length, 8 * c, 1.0);
+  EXPECT_GT(corner_length, 4 * 1.0);
+  expect_no_gouge(mesh, r, R);
+}
+
+TEST(Pencil, ConvexHemisphereHasNoPencilPath) {
+  TriangleMesh m;
+  const int rings = 12, sectors = 32;
+  const double rho = 10;
+  m.vertices.emplace_back(0, 0, rho);
+  for (int i = 1; i <= rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      const double th = 0.5 * std::numbers::pi * i / rings, ph = 2 * std::numbers::pi * j / sectors;
+      m.vertices.emplace_back(rho * std::sin(th) * std::cos(ph), rho * std::sin(th) * std::sin(ph),
+                              rho * std::cos(th));
+    }
+  auto id = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * sectors + (j % sectors)); };
+  for (int j = 0; j < sectors; ++j) m.facets.push_back({0, id(1, j), id(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  PencilParams p;
+  p.interval = 0.5;
+  p.step_down = 1;
+  RunControl control;
+  const PencilResult r = run_pencil(m, ball_cutter(5), p, control);
+  EXPECT_EQ(r.stats.pencil_points, 0u);
+  EXPECT_TRUE(r.paths.empty());
+}
+
+TEST(Pencil, ChordErrorBound) {
+  // Tangents at 30 degrees either side of a chord of length 2: the tangent lines meet at
+  // height tan(30) above the middle.
+  const double t = std::numbers::pi / 6;
+  const Vec3 a(0, 0, 0), b(2, 0, 0);
+  const Vec3 ta(std::cos(t), std::sin(t), 0), tb(std::cos(t), -std::sin(t), 0);
+  EXPECT_NEAR(chord_error(a, ta, b, tb), std::tan(t), 1e-12);
+  EXPECT_NEAR(chord_error(a, Vec3(1, 0, 0), b, Vec3(1, 0, 0)), 0, 1e-15);
+}
+
+TEST(Pencil, RejectsBadInput) {
+  PencilParams p;
+  RunControl control;
+  p.min_angle_deg = 0;
+  EXPECT_THROW(run_pencil(v_groove(1), ball_cutter(5), p, control), std::invalid_argument);
+  p = PencilParams{};
+  EXPECT_THROW(run_pencil(v_groove(1), flat_cutter(5), p, control), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace ncpath
