@@ -1,5 +1,6 @@
-// ncpath command line: raster, drop, offset, pocket, pocket3d and run (a TOML batch). Every command
-// builds the same JobSpec a batch file would, so a job behaves the same whichever way it was given.
+// ncpath command line: raster, scan, drop, offset, pocket, pocket3d and run (a TOML batch). Every
+// command builds the same JobSpec a batch file would, so a job behaves the same whichever way it
+// was given.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -93,6 +94,21 @@ jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
     j.error_status = "invalid_parameter";
   }
   return j;
+}
+
+// Adds the job of a mesh command (raster, scan, drop) to the batch: `param_error` (the first
+// problem of its parameters, "" when none) is reported unless the tool or transform is bad.
+void add_mesh_job(const Common& c, const GcodeCli& g, jobs::JobSpec j,
+                  const std::string& param_error, jobs::BatchSpec& batch, bool& quiet) {
+  if (!param_error.empty() && j.error.empty()) {
+    j.error = "--" + param_error;
+    j.error_status = "invalid_parameter";
+  }
+  apply_gcode(g, j);
+  batch.output = c.out;
+  batch.threads = c.threads;
+  quiet = c.quiet;
+  batch.jobs.push_back(std::move(j));
 }
 
 // Options of the profile commands (offset, pocket, pocket3d); defaults as in OffsetParams /
@@ -259,6 +275,34 @@ int main(int argc, char** argv) {
   raster->add_option("--floor-z", floor_z,
                      "Height where the tool touches nothing (mm); default: the part's lowest z");
 
+  Common scc;
+  ScanParams scp;
+  std::string families = "x";
+  std::vector<double> scan_rect;
+  std::optional<double> scan_floor_z;
+  GcodeCli scan_g;
+  CLI::App* scan = app.add_subcommand(
+      "scan",
+      "Curve-based drive-plane scanning with a ball-end mill: exact CL curves, junctions and "
+      "bi-contact vectors");
+  add_common(scan, scc);
+  add_gcode(scan, scan_g);
+  scan->get_option("--tool")->description("Ball-end mill ball:D (mm); flat and bull are refused");
+  scan->add_option("--families", families, "Drive lines along x, along y, or both (x, then y)")
+      ->check(CLI::IsMember({"x", "y", "both"}))
+      ->capture_default_str();
+  scan->add_option("--interval", scp.interval, "Distance between drive planes (mm)")
+      ->capture_default_str();
+  scan->add_option("--tolerance", scp.tolerance,
+                   "Chordal tolerance of the CL polylines (mm); they never dip below the curve")
+      ->capture_default_str();
+  scan->add_option("--margin", scp.margin, "Grow the part's xy box by this on every side (mm)")
+      ->capture_default_str();
+  scan->add_option("--rect", scan_rect, "Scan this rectangle instead: x_min y_min x_max y_max (mm)")
+      ->expected(4);
+  scan->add_option("--floor-z", scan_floor_z,
+                   "Height where the tool touches nothing (mm); default: the part's lowest z");
+
   Common dc;
   std::string points;
   CLI::App* drop = app.add_subcommand("drop", "Drop the tool at given xy points (CSV x,y lines)");
@@ -343,15 +387,16 @@ int main(int argc, char** argv) {
     if (rect.size() == 4) rp.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
     rp.floor_z = floor_z;
     j.raster = rp;
-    if (std::string e = validate(rp); !e.empty() && j.error.empty()) {
-      j.error = "--" + e;
-      j.error_status = "invalid_parameter";
-    }
-    apply_gcode(raster_g, j);
-    batch.output = rc.out;
-    batch.threads = rc.threads;
-    quiet = rc.quiet;
-    batch.jobs.push_back(std::move(j));
+    add_mesh_job(rc, raster_g, std::move(j), validate(rp), batch, quiet);
+  } else if (scan->parsed()) {
+    jobs::JobSpec j = job_from(scc, jobs::Operation::kScan);
+    std::string e = jobs::parse_families(families, scp.families);
+    if (!e.empty()) e = "families " + e;
+    if (scan_rect.size() == 4)
+      scp.rect = std::array<double, 4>{scan_rect[0], scan_rect[1], scan_rect[2], scan_rect[3]};
+    scp.floor_z = scan_floor_z;
+    j.scan = scp;
+    add_mesh_job(scc, scan_g, std::move(j), e.empty() ? validate(scp) : e, batch, quiet);
   } else if (offset->parsed()) {
     add_profile_job(
         oc, jobs::Operation::kOffset,
@@ -398,11 +443,7 @@ int main(int argc, char** argv) {
   } else if (drop->parsed()) {
     jobs::JobSpec j = job_from(dc, jobs::Operation::kDrop);
     j.points = points;
-    apply_gcode(drop_g, j);
-    batch.output = dc.out;
-    batch.threads = dc.threads;
-    quiet = dc.quiet;
-    batch.jobs.push_back(std::move(j));
+    add_mesh_job(dc, drop_g, std::move(j), "", batch, quiet);
   } else {
     try {
       batch = jobs::parse_batch_file(batch_file);

@@ -24,6 +24,32 @@ const char* operation_name(Operation op) {
       return "pocket";
     case Operation::kPocket3d:
       return "pocket3d";
+    case Operation::kScan:
+      return "scan";
+  }
+  return "?";
+}
+
+std::string parse_families(const std::string& text, ScanFamilies& out) {
+  if (text == "x")
+    out = ScanFamilies::kX;
+  else if (text == "y")
+    out = ScanFamilies::kY;
+  else if (text == "both")
+    out = ScanFamilies::kBoth;
+  else
+    return "must be \"x\", \"y\" or \"both\", got \"" + text + "\"";
+  return "";
+}
+
+const char* families_name(ScanFamilies families) {
+  switch (families) {
+    case ScanFamilies::kX:
+      return "x";
+    case ScanFamilies::kY:
+      return "y";
+    case ScanFamilies::kBoth:
+      return "both";
   }
   return "?";
 }
@@ -295,6 +321,27 @@ void parse_raster_params(Keys& k, RasterParams& p) {
   k.number("bin_width", p.bin_width);
 }
 
+void parse_scan_params(Keys& k, ScanParams& p) {
+  std::string families;
+  if (k.string("families", families))
+    if (std::string e = parse_families(families, p.families); !e.empty()) k.fail("families", e);
+  k.number("interval", p.interval);
+  k.number("tolerance", p.tolerance);
+  k.number("margin", p.margin);
+  double rect[4];
+  if (k.numbers("rect", 4, rect))
+    p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
+  double floor_z;
+  if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
+  double chunk;
+  if (k.number("chunk_planes", chunk)) {
+    if (chunk >= 1 && chunk <= 1e6 && chunk == static_cast<std::uint32_t>(chunk))
+      p.chunk_planes = static_cast<std::uint32_t>(chunk);
+    else
+      k.fail("chunk_planes", "must be a whole number >= 1");
+  }
+}
+
 // stepover: a number (mm) or a string percentage of the tool diameter. False when absent.
 bool parse_stepover_key(Keys& k, const Cutter& tool, double& out) {
   if (!k.is_string("stepover")) return k.number("stepover", out);
@@ -369,10 +416,13 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     job.operation = Operation::kPocket;
   else if (op == "pocket3d")
     job.operation = Operation::kPocket3d;
+  else if (op == "scan")
+    job.operation = Operation::kScan;
   else
-    k.fail(
-        "operation",
-        "must be \"raster\", \"drop\", \"offset\", \"pocket\" or \"pocket3d\", got \"" + op + "\"");
+    k.fail("operation",
+           "must be \"raster\", \"scan\", \"drop\", \"offset\", \"pocket\" or \"pocket3d\", "
+           "got \"" +
+               op + "\"");
   const bool profile_op = job.operation == Operation::kOffset ||
                           job.operation == Operation::kPocket ||
                           job.operation == Operation::kPocket3d;
@@ -412,6 +462,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     Keys pk(*pt, "params.");
     if (job.operation == Operation::kRaster) {
       parse_raster_params(pk, job.raster);
+    } else if (job.operation == Operation::kScan) {
+      parse_scan_params(pk, job.scan);
     } else if (job.operation == Operation::kOffset) {
       parse_offset_params(pk, job);
     } else if (job.operation == Operation::kPocket) {
@@ -425,6 +477,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     pk.finish();
     if (pk.error.empty() && job.operation == Operation::kRaster)
       if (std::string e = validate(job.raster); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kScan)
+      if (std::string e = validate(job.scan); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kOffset)
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPocket)
@@ -555,6 +609,15 @@ std::string params_json(const JobSpec& job) {
     j["chunk_lines"] = p.chunk_lines;
     j["strip_height"] = p.strip_height;
     j["bin_width"] = p.bin_width;
+  } else if (job.operation == Operation::kScan) {
+    const ScanParams& p = job.scan;
+    j["families"] = families_name(p.families);
+    j["interval"] = p.interval;
+    j["tolerance"] = p.tolerance;
+    j["margin"] = p.margin;
+    j["rect"] = p.rect ? nlohmann::ordered_json(*p.rect) : nlohmann::ordered_json(nullptr);
+    j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
+    j["chunk_planes"] = p.chunk_planes;
   } else if (job.operation == Operation::kOffset) {
     j["stepover"] = job.offset.stepover;
     j["stock"] = job.offset.stock;

@@ -9,7 +9,7 @@
 //   threads = 0                  # 0 = all cores
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
-//   operation = "raster"          # "raster", "drop", "offset", "pocket" or "pocket3d"
+//   operation = "raster"          # "raster", "scan", "drop", "offset", "pocket" or "pocket3d"
 //   input     = "../datasets/cache/meshes/bunny00.off"
 //   surface   = "bottom.toml"     # pocket3d only: the bottom surface
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
@@ -30,12 +30,13 @@
 #include "batch/output/gcode_writer.hpp"
 #include "engine/pocket_path.hpp"
 #include "engine/raster.hpp"
+#include "engine/scan.hpp"
 #include "kernels/cutters/cutter.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::jobs {
 
-enum class Operation : std::uint8_t { kRaster, kDrop, kOffset, kPocket, kPocket3d };
+enum class Operation : std::uint8_t { kRaster, kDrop, kOffset, kPocket, kPocket3d, kScan };
 
 // The offset operation (pocket offset loops, unlinked; PocketParams for tool paths).
 struct OffsetParams {
@@ -97,6 +98,7 @@ struct JobSpec {
   std::string tool_text;  // as the user wrote it, e.g. "ball:5"
   Cutter tool;
   RasterParams raster;
+  ScanParams scan;  // the scan operation (curve-based drive-plane scanning, ball only)
   OffsetParams offset;
   PocketParams pocket;
   Pocket3dJobParams pocket3d;
@@ -125,7 +127,12 @@ BatchSpec parse_batch_file(const std::filesystem::path& path);
 BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
                            const std::string& source_name);
 
-const char* operation_name(Operation op);  // "raster", "drop", "offset", "pocket", "pocket3d"
+// "raster", "drop", "offset", "pocket", "pocket3d", "scan"
+const char* operation_name(Operation op);
+
+// "x", "y", "both" -> families; error message to follow the key's name, or "".
+std::string parse_families(const std::string& text, ScanFamilies& out);
+const char* families_name(ScanFamilies families);  // "x", "y", "both"
 
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);

@@ -1,0 +1,181 @@
+#include "batch/jobs/scan_job.hpp"
+
+#include <cassert>
+#include <span>
+
+#include "engine/scan.hpp"
+#include "kernels/scan/envelope.hpp"
+#include "kernels/scan/plane_slice.hpp"
+
+namespace ncpath::jobs {
+
+namespace {
+
+std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+
+// The codes written to scan/segment_kind and scan/junction_kind are the engine's and the
+// kernels' own (PieceKind, kScanSegmentVertical, JunctionKind); the enum texts below list them.
+static_assert(static_cast<int>(PieceKind::kFacetLine) == 0 &&
+              static_cast<int>(PieceKind::kSphereArc) == 1 &&
+              static_cast<int>(PieceKind::kCylinderEllipse) == 2 &&
+              static_cast<int>(PieceKind::kCylinderLine) == 3 &&
+              static_cast<int>(PieceKind::kCylinderCircle) == 4 &&
+              static_cast<int>(PieceKind::kFloor) == 5 && kScanSegmentVertical == 6);
+static_assert(static_cast<int>(JunctionKind::kConvex) == 0 &&
+              static_cast<int>(JunctionKind::kSharpConcave) == 1 &&
+              static_cast<int>(JunctionKind::kTangent) == 2);
+
+constexpr const char* kSegmentKindEnum =
+    "0=facet_line,1=sphere_arc,2=cylinder_ellipse,3=cylinder_line,4=cylinder_circle,5=floor,"
+    "6=vertical";
+constexpr const char* kJunctionKindEnum = "0=convex,1=sharp_concave,2=tangent";
+constexpr const char* kElementText =
+    "mesh element: kind (0 facet, 1 edge, 2 vertex, 3 floor), then indices a, b: facet index, "
+    "-1; edge's two vertex indices; vertex index, -1; -1, -1 (floor)";
+
+// The exact segments and junctions of the whole job, structure-of-arrays in cutting order
+// (rows of 3 or 5 values flattened), as they go to HDF5.
+struct ScanRecords {
+  std::vector<std::int64_t> seg_path, seg_element;
+  std::vector<std::uint8_t> seg_kind;
+  std::vector<double> seg_start, seg_end, seg_geometry;
+  std::vector<std::int64_t> jun_path, jun_element1, jun_element2;
+  std::vector<std::uint8_t> jun_kind;
+  std::vector<double> jun_position, jun_b1, jun_b2, jun_angle;
+
+  static void push(std::vector<double>& to, const std::array<double, 3>& v) {
+    to.insert(to.end(), v.begin(), v.end());
+  }
+  static void push(std::vector<std::int64_t>& to, const ScanElementRef& e) {
+    to.insert(to.end(), {e.kind, e.a, e.b});
+  }
+  void append(const ScanChunk& ch) {
+    for (const ScanSegmentRecord& s : ch.segments) {
+      seg_path.push_back(s.path);
+      seg_kind.push_back(s.kind);
+      push(seg_element, s.element);
+      push(seg_start, s.start);
+      push(seg_end, s.end);
+      seg_geometry.insert(seg_geometry.end(), s.geometry.begin(), s.geometry.end());
+    }
+    for (const ScanJunctionRecord& j : ch.junctions) {
+      jun_path.push_back(j.path);
+      jun_kind.push_back(j.kind);
+      push(jun_position, j.position);
+      push(jun_b1, j.b1);
+      push(jun_b2, j.b2);
+      push(jun_element1, j.element1);
+      push(jun_element2, j.element2);
+      jun_angle.push_back(j.angle);
+    }
+  }
+};
+
+template <class T>
+std::span<const T> all(const std::vector<T>& v) {
+  return std::span<const T>(v);
+}
+
+void write_records(const ScanRecords& r, out::ClJob& cl) {
+  const std::string g = "scan";
+  cl.write_array(g, "segment_path", all(r.seg_path), 0, "",
+                 "cut path of segment i: its index among the job's cut paths (path_kind 0)");
+  cl.write_array(g, "segment_kind", all(r.seg_kind), 0, "", kSegmentKindEnum);
+  cl.write_array(g, "segment_element", all(r.seg_element), 3, "", kElementText);
+  cl.write_array(g, "segment_start", all(r.seg_start), 3, "mm",
+                 "tool tip x, y, z where the segment starts, in cutting order");
+  cl.write_array(g, "segment_end", all(r.seg_end), 3, "mm",
+                 "tool tip x, y, z where the segment ends, in cutting order");
+  cl.write_array(g, "segment_geometry", all(r.seg_geometry), 5, "",
+                 "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
+                 "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
+                 "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle of "
+                 "the major axis from +u (upper arc); vertical: u; unused columns 0");
+  cl.write_array(g, "junction_path", all(r.jun_path), 0, "",
+                 "cut path of junction i: its index among the job's cut paths (path_kind 0)");
+  cl.write_array(g, "junction_kind", all(r.jun_kind), 0, "", kJunctionKindEnum);
+  cl.write_array(g, "junction_position", all(r.jun_position), 3, "mm",
+                 "tool tip x, y, z at the junction");
+  cl.write_array(g, "junction_b1", all(r.jun_b1), 3, "",
+                 "unit vector from the contact on the element before the junction (in cutting "
+                 "order) to the ball centre");
+  cl.write_array(g, "junction_b2", all(r.jun_b2), 3, "",
+                 "unit vector from the contact on the element after the junction (in cutting "
+                 "order) to the ball centre");
+  cl.write_array(g, "junction_element1", all(r.jun_element1), 3, "",
+                 std::string("element before the junction; ") + kElementText);
+  cl.write_array(g, "junction_element2", all(r.jun_element2), 3, "",
+                 std::string("element after the junction; ") + kElementText);
+  cl.write_array(g, "junction_angle", all(r.jun_angle), 0, "rad",
+                 "angle between junction_b1 and junction_b2");
+}
+
+void push_scan_stats(const ScanStats& st, std::vector<out::StatValue>& stats) {
+  const out::StatValue list[] = {
+      {"facets_skipped_degenerate", i64(st.facets_degenerate), ""},
+      {"offset_facets", i64(st.facets), ""},
+      {"offset_edges", i64(st.edges), ""},
+      {"offset_vertices", i64(st.vertices), ""},
+      {"planes", i64(st.planes), ""},
+      {"planes_x", i64(st.planes_x), ""},
+      {"planes_y", i64(st.planes_y), ""},
+      {"pieces", i64(st.pieces), ""},
+      {"pieces_linear", i64(st.linear_pieces), ""},
+      {"pieces_hidden", i64(st.hidden), ""},
+      {"segments", i64(st.segments), ""},
+      {"junctions", i64(st.junctions), ""},
+      {"junctions_sharp_concave", i64(st.sharp_concave), ""},
+      {"junctions_convex", i64(st.convex), ""},
+      {"junctions_tangent", i64(st.tangent), ""},
+      {"cut_points", i64(st.cut_points), ""},
+      {"link_points", i64(st.link_points), ""},
+      {"envelope_decisions", i64(st.decisions), ""},
+      {"envelope_crossings", i64(st.crossings), ""},
+      {"floor_z", st.floor_z, "mm"},
+      {"scan_x_min", st.rect[0], "mm"},
+      {"scan_y_min", st.rect[1], "mm"},
+      {"scan_x_max", st.rect[2], "mm"},
+      {"scan_y_max", st.rect[3], "mm"},
+      {"elements_s", st.elements_s, "s"},
+  };
+  stats.insert(stats.end(), std::begin(list), std::end(list));
+}
+
+}  // namespace
+
+ScanJobSummary run_scan_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
+                            out::GcodeWriter* gcode, RunControl& control,
+                            std::vector<out::StatValue>& stats) {
+  ScanJobSummary summary;
+  ScanRecords records;
+  [[maybe_unused]] std::int64_t cut_paths = 0;  // cut paths before the chunk
+  auto sink = [&](const ScanChunk& ch) {
+    const ClChunk& c = ch.cl;
+    cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+    if (gcode) gcode->append(c);
+    summary.points += c.point_count();
+#ifndef NDEBUG
+    // The engine numbers the segments' and junctions' paths among the cut paths.
+    std::int64_t cuts = 0;
+    for (std::uint8_t k : c.path_kinds) cuts += k == static_cast<std::uint8_t>(PathKind::kCut);
+    for (const ScanSegmentRecord& s : ch.segments)
+      assert(s.path >= cut_paths && s.path < cut_paths + cuts);
+    cut_paths += cuts;
+#endif
+    records.append(ch);
+  };
+  const ScanStats st = run_scan(mesh, job.tool, job.scan, sink, control);
+  summary.compute_s = st.compute_s;
+
+  Stopwatch write_clock;
+  write_records(records, cl);
+  const double write_s = st.sink_s + write_clock.seconds();
+
+  push_scan_stats(st, stats);
+  stats.push_back({"compute_s", st.compute_s, "s"});
+  stats.push_back({"write_s", write_s, "s"});
+  stats.push_back({"points", i64(summary.points), ""});
+  return summary;
+}
+
+}  // namespace ncpath::jobs
