@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "engine/facet_table.hpp"
+#include "engine/chunk_stream.hpp"
 #include "engine/parallel.hpp"
 #include "engine/strip_index.hpp"
 #include "kernels/geom/tolerance.hpp"
@@ -207,33 +208,12 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
       st.floor_points += o.floor;
     }
   };
-  ClChunk ready, next;
-  {
-    Stopwatch clock;
-    compute_chunk(0, ready);
-    st.compute_s += clock.seconds();
-  }
-  for (std::size_t c0 = 0; c0 < strips; c0 += strips_per_chunk) {
-    if (control.cancel.load()) throw Cancelled{};
-    const std::size_t n0 = c0 + strips_per_chunk;
-    double background_s = 0, sink_s = 0;
-    par::overlap(
-        [&] {
-          if (n0 >= strips) return;
-          Stopwatch clock;
-          compute_chunk(n0, next);
-          background_s = clock.seconds();
-        },
-        [&] {
-          Stopwatch clock;
-          sink(ready);
-          sink_s = clock.seconds();
-        });
-    st.compute_s += background_s;
-    st.sink_s += sink_s;
-    std::swap(ready, next);
-    if (control.progress) control.progress(std::min(n_lines, n0 * lines_per_strip), n_lines);
-  }
+  stream_chunks<ClChunk>(
+      strips, strips_per_chunk, compute_chunk, sink,
+      [&](std::size_t done) {
+        if (control.progress) control.progress(std::min(n_lines, done * lines_per_strip), n_lines);
+      },
+      control, st.compute_s, st.sink_s);
   return st;
 }
 

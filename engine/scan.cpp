@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "engine/offset_elements_build.hpp"
+#include "engine/chunk_stream.hpp"
 #include "engine/parallel.hpp"
 #include "kernels/cutters/drop_cutter.hpp"
 #include "kernels/geom/tolerance.hpp"
@@ -356,44 +357,28 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
         st.junctions += o.chunk.junctions.size();
       }
     };
-    ScanChunk ready, next;
-    {
-      Stopwatch clock;
-      compute_chunk(0, ready);
-      st.compute_s += clock.seconds();
-    }
-    if (ri > 0) {
-      // Between families: a rapid from the last line's end to this family's first point.
-      ScanChunk hop;
-      const auto& xyz = ready.cl.xyz;
-      hop.cl.xyz = {xyz[0], xyz[1], xyz[2]};
-      hop.cl.contact = {ready.cl.contact[0]};
-      hop.cl.path_sizes = {1};
-      hop.cl.path_kinds = {std::uint8_t(PathKind::kRapid)};
-      sink(hop);
-    }
-    for (std::size_t c0 = 0; c0 < run.planes; c0 += per_chunk) {
-      if (control.cancel.load()) throw Cancelled{};
-      const std::size_t n0 = c0 + per_chunk;
-      double background_s = 0, sink_s = 0;
-      par::overlap(
-          [&] {
-            if (n0 >= run.planes) return;
-            Stopwatch clock;
-            compute_chunk(n0, next);
-            background_s = clock.seconds();
-          },
-          [&] {
-            Stopwatch clock;
-            sink(ready);
-            sink_s = clock.seconds();
-          });
-      st.compute_s += background_s;
-      st.sink_s += sink_s;
-      std::swap(ready, next);
-      done_planes += std::min(run.planes, n0) - c0;
-      if (control.progress) control.progress(done_planes, total_planes);
-    }
+    // Between families: a rapid from the last line's end to this family's first point.
+    bool first = true;
+    auto sink_run = [&](const ScanChunk& c) {
+      if (first && ri > 0 && !c.cl.xyz.empty()) {
+        ScanChunk hop;
+        hop.cl.xyz = {c.cl.xyz[0], c.cl.xyz[1], c.cl.xyz[2]};
+        hop.cl.contact = {c.cl.contact[0]};
+        hop.cl.path_sizes = {1};
+        hop.cl.path_kinds = {std::uint8_t(PathKind::kRapid)};
+        sink(hop);
+      }
+      first = false;
+      sink(c);
+    };
+    const std::uint64_t before = done_planes;
+    stream_chunks<ScanChunk>(
+        run.planes, per_chunk, compute_chunk, sink_run,
+        [&](std::size_t done) {
+          done_planes = before + done;
+          if (control.progress) control.progress(done_planes, total_planes);
+        },
+        control, st.compute_s, st.sink_s);
   }
   return st;
 }

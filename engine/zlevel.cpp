@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "engine/offset_elements_build.hpp"
+#include "engine/chunk_stream.hpp"
 #include "engine/parallel.hpp"
 #include "kernels/geom/tolerance.hpp"
 #include "kernels/scan/zlevel.hpp"
@@ -209,33 +210,12 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       st.points += o.points;
     }
   };
-  ZLevelChunk ready, next;
-  {
-    Stopwatch clock;
-    compute_chunk(0, ready);
-    st.compute_s += clock.seconds();
-  }
-  for (std::size_t c0 = 0; c0 < levels.size(); c0 += p.chunk_levels) {
-    if (control.cancel.load()) throw Cancelled{};
-    const std::size_t n0 = c0 + p.chunk_levels;
-    double background_s = 0, sink_s = 0;
-    par::overlap(
-        [&] {
-          if (n0 >= levels.size()) return;
-          Stopwatch clock;
-          compute_chunk(n0, next);
-          background_s = clock.seconds();
-        },
-        [&] {
-          Stopwatch clock;
-          sink(ready);
-          sink_s = clock.seconds();
-        });
-    st.compute_s += background_s;
-    st.sink_s += sink_s;
-    std::swap(ready, next);
-    if (control.progress) control.progress(std::min(levels.size(), n0), levels.size());
-  }
+  stream_chunks<ZLevelChunk>(
+      levels.size(), p.chunk_levels, compute_chunk, sink,
+      [&](std::size_t done) {
+        if (control.progress) control.progress(done, levels.size());
+      },
+      control, st.compute_s, st.sink_s);
   return st;
 }
 
