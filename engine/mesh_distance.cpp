@@ -1,0 +1,407 @@
+#include "engine/mesh_distance.hpp"
+
+#include <embree3/rtcore.h>
+
+#include <Eigen/Geometry>  // cross
+
+#include <algorithm>
+#include <cassert>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "engine/parallel.hpp"
+#include "kernels/geom/tolerance.hpp"
+
+namespace ncpath {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void embree_error(void*, RTCError code, const char* message) {
+  // Registered so Embree never prints on its own; the constructor reads errors back with
+  // rtcGetDeviceError after the scene build and throws.
+  (void)code;
+  (void)message;
+}
+
+// Float bounds that contain the double interval [lo, hi] with room for rounding.
+float pad_down(double v) {
+  const double pad = tol::kFloatBoxPad * (1.0 + std::abs(v));
+  return std::nextafter(static_cast<float>(v - pad), -std::numeric_limits<float>::infinity());
+}
+float pad_up(double v) {
+  const double pad = tol::kFloatBoxPad * (1.0 + std::abs(v));
+  return std::nextafter(static_cast<float>(v + pad), std::numeric_limits<float>::infinity());
+}
+
+// Float query radius that Embree may compare with its float box distances without culling
+// any facet whose exact distance is <= d: covers the rounding of the query point to float
+// (|p| is its largest coordinate magnitude) and of Embree's distance arithmetic.
+float query_radius(double d, double p_mag) {
+  if (!(d < kInf)) return std::numeric_limits<float>::infinity();
+  return pad_up(d + tol::kFloatBoxPad * (1.0 + p_mag));
+}
+
+// Distance from p to the segment pq; writes the closest point. Clamped ends return the
+// vertex itself, so facets sharing a vertex give bitwise equal answers there.
+double point_segment(const Vec3& x, const Vec3& p, const Vec3& q, Vec3& out) {
+  const Vec3 e = q - p;
+  const double t = (x - p).dot(e) / e.squaredNorm();
+  if (!(t > 0))
+    out = p;
+  else if (t >= 1)
+    out = q;
+  else
+    out = p + t * e;
+  return (x - out).norm();
+}
+
+// x lies over the triangle (its projection along n is inside or on the boundary); n is the
+// unnormalised normal (b - a) x (c - a). Writes the signs of the three edge tests.
+bool over_triangle(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& n,
+                   double s[3]) {
+  s[0] = (b - a).cross(x - a).dot(n);
+  s[1] = (c - b).cross(x - b).dot(n);
+  s[2] = (a - c).cross(x - c).dot(n);
+  return s[0] >= 0 && s[1] >= 0 && s[2] >= 0;
+}
+
+// First t >= 0 at which the point x + t d (d unit) comes within r of the centre v; 0 when
+// already within; +inf when never. Root of |w + t d|^2 = r^2 in its cancellation-free form.
+double sweep_point(const Vec3& x, const Vec3& d, double r, const Vec3& v) {
+  const Vec3 w = x - v;
+  const double c = w.squaredNorm() - r * r;
+  if (c <= 0) return 0;
+  const double hb = w.dot(d);
+  if (hb >= 0) return kInf;  // moving away
+  // hb^2 - c, written without cancelling squares: r^2 minus the squared miss distance.
+  const double disc = r * r - w.cross(d).squaredNorm();
+  if (disc < 0) return kInf;
+  return c / (-hb + std::sqrt(disc));
+}
+
+// The same for the finite cylinder of radius r around segment pq (caps excluded: they lie
+// inside the end spheres, which the caller tests).
+double sweep_segment(const Vec3& x, const Vec3& d, double r, const Vec3& p, const Vec3& q) {
+  const Vec3 e = q - p;
+  const double l2 = e.squaredNorm();
+  const Vec3 w = x - p;
+  const Vec3 w_perp = w - (w.dot(e) / l2) * e;
+  const double c = w_perp.squaredNorm() - r * r;
+  if (c <= 0) {
+    // Inside the infinite cylinder: touching now when beside the segment; otherwise the
+    // ball can only reach the segment through an end sphere.
+    const double u = w.dot(e);
+    return (u >= 0 && u <= l2) ? 0 : kInf;
+  }
+  const Vec3 d_perp = d - (d.dot(e) / l2) * e;
+  const double a2 = d_perp.squaredNorm();
+  const double hb = w_perp.dot(d_perp);
+  if (!(a2 > 0) || hb >= 0) return kInf;
+  const double disc = a2 * r * r - w_perp.cross(d_perp).squaredNorm();  // as in sweep_point
+  if (disc < 0) return kInf;
+  const double t = c / (-hb + std::sqrt(disc));
+  const double u = (w + t * d).dot(e);
+  return (u >= 0 && u <= l2) ? t : kInf;
+}
+
+struct Tri {
+  Vec3 p[3];  // mm
+};
+
+// 3 x 21 bits of the centroid's cell in the box, interleaved.
+std::uint64_t morton_key(const Aabb3& box, const Tri& t) {
+  const Vec3 g = (t.p[0] + t.p[1] + t.p[2]) / 3;
+  std::uint64_t key = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double ext = box.hi[k] - box.lo[k];
+    const double u = ext > 0 ? (g[k] - box.lo[k]) / ext : 0;
+    auto cell = static_cast<std::uint64_t>(std::clamp(u, 0.0, 1.0) * ((1 << 21) - 1));
+    for (int b = 0; b < 21; ++b) key |= ((cell >> b) & 1u) << (3 * b + k);
+  }
+  return key;
+}
+
+// Reorders the facets along a Morton curve: the facets Embree visits for one query are
+// then close in memory (mesh files often list facets in no spatial order, and the
+// callbacks' cache misses dominate the query time). Results do not depend on the order:
+// ties are broken by the source index.
+void sort_along_morton_curve(const Aabb3& box, std::vector<Tri>& tris,
+                             std::vector<std::uint32_t>& source) {
+  const std::size_t n = tris.size();
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(n);  // (key, current slot)
+  par::for_each(n, 4096, [&](std::size_t i) {
+    order[i] = {morton_key(box, tris[i]), static_cast<std::uint32_t>(i)};
+  });
+  par::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a < b; });
+  std::vector<Tri> t2(n);
+  std::vector<std::uint32_t> s2(n);
+  par::for_each(n, 4096, [&](std::size_t i) {
+    t2[i] = tris[order[i].second];
+    s2[i] = source[order[i].second];
+  });
+  tris = std::move(t2);
+  source = std::move(s2);
+}
+
+}  // namespace
+
+double point_triangle_closest(const Vec3& x, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& q) {
+  const Vec3 n = (b - a).cross(c - a);
+  double s[3];
+  if (over_triangle(x, a, b, c, n, s)) {
+    // Face region: the projection onto the plane (distance from the plane equation, which
+    // is more accurate than |x - q|).
+    const double h = (x - a).dot(n), n2 = n.squaredNorm();
+    q = x - (h / n2) * n;
+    return std::abs(h) / std::sqrt(n2);
+  }
+  // Outside: the closest point is on an edge whose line x is beyond (for a convex polygon
+  // at least one such edge holds it, even when it is a vertex).
+  const Vec3* v[3] = {&a, &b, &c};
+  double best = kInf;
+  for (int k = 0; k < 3; ++k) {
+    if (s[k] >= 0) continue;
+    Vec3 cand;
+    const double d = point_segment(x, *v[k], *v[(k + 1) % 3], cand);
+    if (d < best) {
+      best = d;
+      q = cand;
+    }
+  }
+  return best;
+}
+
+double sweep_ball_triangle(const Vec3& x, const Vec3& d, double r, double t_max, const Vec3& a,
+                           const Vec3& b, const Vec3& c) {
+  // The ball touches the triangle when its centre enters the triangle grown by r: the union
+  // of the slab prism (triangle x [-r, r] along the normal), three edge cylinders and three
+  // vertex spheres, each convex. The first entry into the union is the first entry into one
+  // of them, and an entry through a prism side lies inside that edge's cylinder, so only
+  // the two offset faces of the prism are tested.
+  const Vec3 n = (b - a).cross(c - a);
+  const Vec3 nu = n / n.norm();
+  double s[3];
+  double t = kInf;
+  const double h = (x - a).dot(nu), hd = d.dot(nu);
+  if (std::abs(h) <= r) {
+    if (over_triangle(x, a, b, c, n, s)) return 0;
+  } else if (h * hd < 0) {
+    const double tf = (std::abs(h) - r) / std::abs(hd);
+    if (tf <= t_max && over_triangle(x + tf * d, a, b, c, n, s)) t = tf;
+  }
+  const Vec3* v[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    t = std::min(t, sweep_segment(x, d, r, *v[k], *v[(k + 1) % 3]));
+    t = std::min(t, sweep_point(x, d, r, *v[k]));
+  }
+  return t <= t_max ? t : kInf;
+}
+
+struct MeshDistance::Impl {
+  std::vector<Tri> tris;
+  std::vector<std::uint32_t> source;  // tris[i] came from mesh.facets[source[i]]
+  std::uint64_t skipped = 0;
+  Aabb3 box;             // of the kept facets, mm
+  double mean_edge = 0;  // mm, sets march()'s window
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+
+  static void bounds(const RTCBoundsFunctionArguments* args) {
+    const auto* self = static_cast<const Impl*>(args->geometryUserPtr);
+    const Tri& f = self->tris[args->primID];
+    const Vec3 lo = f.p[0].cwiseMin(f.p[1]).cwiseMin(f.p[2]);
+    const Vec3 hi = f.p[0].cwiseMax(f.p[1]).cwiseMax(f.p[2]);
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = pad_down(lo.x());
+    b->lower_y = pad_down(lo.y());
+    b->lower_z = pad_down(lo.z());
+    b->upper_x = pad_up(hi.x());
+    b->upper_y = pad_up(hi.y());
+    b->upper_z = pad_up(hi.z());
+  }
+
+  // Embree wants intersect/occluded callbacks for a user geometry; only point queries run.
+  static void intersect(const RTCIntersectFunctionNArguments*) {}
+  static void occluded(const RTCOccludedFunctionNArguments*) {}
+
+  // Per-query state handed to the point-query callbacks through userPtr.
+  struct ClosestQuery {
+    const Impl* m;
+    Vec3 p;
+    double p_mag, max_distance;  // |p|_inf, mm
+    Closest best;
+  };
+  struct SweepQuery {
+    const Impl* m;
+    Vec3 x, d;        // window start and unit direction
+    double r, p_mag;  // ball radius, |x|_inf, mm
+    double t_best;    // first contact so far; the window length while hit is false
+    bool hit = false;
+  };
+
+  // Callbacks may arrive in any order; the kept answer is the lexicographic minimum of
+  // (distance, facet index), so the result does not depend on it.
+  static bool closest_callback(RTCPointQueryFunctionArguments* args) {
+    auto* q = static_cast<ClosestQuery*>(args->userPtr);
+    const Tri& f = q->m->tris[args->primID];
+    Vec3 point;
+    const double d = point_triangle_closest(q->p, f.p[0], f.p[1], f.p[2], point);
+    const std::uint32_t facet = q->m->source[args->primID];
+    if (!(d <= q->max_distance)) return false;
+    if (d > q->best.distance || (d == q->best.distance && facet > q->best.facet)) return false;
+    q->best = {d, point, facet};
+    // Shrink, never grow, and keep boxes at exactly this distance (ties) in reach.
+    const float r = query_radius(d, q->p_mag);
+    if (r >= args->query->radius) return false;
+    args->query->radius = r;
+    return true;
+  }
+
+  static bool sweep_callback(RTCPointQueryFunctionArguments* args) {
+    auto* q = static_cast<SweepQuery*>(args->userPtr);
+    const Tri& f = q->m->tris[args->primID];
+    const double t = sweep_ball_triangle(q->x, q->d, q->r, q->t_best, f.p[0], f.p[1], f.p[2]);
+    if (!(t <= q->t_best) || (q->hit && t == q->t_best)) return false;
+    q->t_best = t;
+    q->hit = true;
+    // A facet touched by time t lies within r + t of the window start.
+    const float radius = query_radius(q->r + t, q->p_mag);
+    if (radius >= args->query->radius) return false;
+    args->query->radius = radius;
+    return true;
+  }
+};
+
+MeshDistance::MeshDistance(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  const std::size_t n = mesh.facets.size();
+  // Count, scan, fill (STYLE habit 8): which facets are usable, their slots, the copies.
+  auto usable = [&](std::size_t i, Tri& t) {
+    for (int k = 0; k < 3; ++k) {
+      t.p[k] = mesh.vertices[mesh.facets[i][k]];
+      if (!t.p[k].allFinite()) return false;
+    }
+    return (t.p[1] - t.p[0]).cross(t.p[2] - t.p[0]).norm() >= tol::kDegenerateArea2;
+  };
+  std::vector<std::uint32_t> slot(n + 1, 0);
+  par::for_each(n, 4096, [&](std::size_t i) {
+    Tri t;
+    slot[i + 1] = usable(i, t) ? 1 : 0;
+  });
+  for (std::size_t i = 0; i < n; ++i) slot[i + 1] += slot[i];
+  m.tris.resize(slot[n]);
+  m.source.resize(slot[n]);
+  m.skipped = n - slot[n];
+  par::for_each(n, 4096, [&](std::size_t i) {
+    if (slot[i + 1] == slot[i]) return;
+    usable(i, m.tris[slot[i]]);
+    m.source[slot[i]] = static_cast<std::uint32_t>(i);
+  });
+  double edge_sum = 0;
+  for (const Tri& t : m.tris)
+    for (int k = 0; k < 3; ++k) {
+      m.box.add(t.p[k]);
+      edge_sum += (t.p[(k + 1) % 3] - t.p[k]).norm();
+    }
+  m.mean_edge = m.tris.empty() ? 0 : edge_sum / (3.0 * m.tris.size());
+  sort_along_morton_curve(m.box, m.tris, m.source);
+
+  m.device = rtcNewDevice("threads=0");
+  if (!m.device) throw std::runtime_error("Embree: cannot create a device");
+  rtcSetDeviceErrorFunction(m.device, embree_error, nullptr);
+  m.scene = rtcNewScene(m.device);
+  rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
+  RTCGeometry geom = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(m.tris.size()));
+  rtcSetGeometryUserData(geom, &m);
+  rtcSetGeometryBoundsFunction(geom, &Impl::bounds, &m);
+  rtcSetGeometryIntersectFunction(geom, &Impl::intersect);
+  rtcSetGeometryOccludedFunction(geom, &Impl::occluded);
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(m.scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(m.scene);
+  const RTCError err = rtcGetDeviceError(m.device);
+  if (err != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree: scene build failed with error code " +
+                             std::to_string(static_cast<int>(err)));
+}
+
+MeshDistance::~MeshDistance() {
+  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+std::uint64_t MeshDistance::facet_count() const { return impl_->tris.size(); }
+std::uint64_t MeshDistance::skipped() const { return impl_->skipped; }
+
+MeshDistance::Closest MeshDistance::closest(const Vec3& p, double max_distance) const {
+  const Impl& m = *impl_;
+  Impl::ClosestQuery q{&m, p, p.cwiseAbs().maxCoeff(), max_distance, {}};
+  if (m.tris.empty() || !(max_distance >= 0)) return q.best;
+  RTCPointQuery pq;
+  pq.x = static_cast<float>(p.x());
+  pq.y = static_cast<float>(p.y());
+  pq.z = static_cast<float>(p.z());
+  pq.time = 0;
+  pq.radius = query_radius(max_distance, q.p_mag);
+  RTCPointQueryContext ctx;
+  rtcInitPointQueryContext(&ctx);
+  rtcPointQuery(m.scene, &pq, &ctx, &Impl::closest_callback, &q);
+  return q.best;
+}
+
+std::optional<double> MeshDistance::march(const Vec3& origin, const Vec3& dir, double radius,
+                                          double s_max) const {
+  const Impl& m = *impl_;
+  assert(std::abs(dir.norm() - 1) < 1e-9);
+  if (m.tris.empty() || !(s_max >= 0)) return std::nullopt;
+  // No contact once the centre has left the box grown by the radius for good: clip s_max
+  // to the ray's exit from it (generously padded; the clip only saves steps).
+  const double pad = radius + tol::kFloatBoxPad * (1 + radius + m.box.lo.cwiseAbs().maxCoeff() +
+                                                   m.box.hi.cwiseAbs().maxCoeff());
+  for (int k = 0; k < 3; ++k) {
+    const double lo = m.box.lo[k] - pad, hi = m.box.hi[k] + pad;
+    if (dir[k] == 0) {
+      if (origin[k] < lo || origin[k] > hi) return std::nullopt;
+      continue;
+    }
+    const double t0 = (lo - origin[k]) / dir[k], t1 = (hi - origin[k]) / dir[k];
+    s_max = std::min(s_max, std::max(t0, t1));
+  }
+  if (!(s_max >= 0)) return std::nullopt;
+
+  // Sphere-trace while the free distance is at least a window; within it, solve the first
+  // contact exactly over the next two windows. Every round advances by at least a window,
+  // so grazing rays (where pure sphere tracing converges ever more slowly) still finish.
+  const double window = std::max(0.25 * radius, 2.0 * m.mean_edge);
+  double s = 0;
+  while (true) {
+    const Vec3 x = origin + s * dir;
+    const double gap = closest(x).distance - radius;
+    if (gap >= window) {
+      s += gap;
+      if (s > s_max) return std::nullopt;
+      continue;
+    }
+    const double span = std::min(2.0 * window, s_max - s);
+    Impl::SweepQuery q{&m, x, dir, radius, x.cwiseAbs().maxCoeff(), span};
+    RTCPointQuery pq;
+    pq.x = static_cast<float>(x.x());
+    pq.y = static_cast<float>(x.y());
+    pq.z = static_cast<float>(x.z());
+    pq.time = 0;
+    pq.radius = query_radius(radius + span, q.p_mag);
+    RTCPointQueryContext ctx;
+    rtcInitPointQueryContext(&ctx);
+    rtcPointQuery(m.scene, &pq, &ctx, &Impl::sweep_callback, &q);
+    if (q.hit) return s + q.t_best;
+    if (s + span >= s_max) return std::nullopt;
+    s += span;
+  }
+}
+
+}  // namespace ncpath
