@@ -10,6 +10,7 @@
 #include "engine/facet_table.hpp"
 #include "engine/parallel.hpp"
 #include "engine/scan.hpp"
+#include "engine/surface_check.hpp"
 #include "engine/zlevel.hpp"
 #include "kernels/cleanup/pencil.hpp"
 #include "kernels/scan/envelope.hpp"
@@ -294,19 +295,7 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
   // The point drop-cutter (Embree, exact in double): checks refined points and chords.
   const FacetTable table = build_facet_table(mesh);
   const DropIndex index(table, cutter);
-  // How far the ball at q is below the CL surface. The drop-cutter height is only upper
-  // semicontinuous: at the foot of a wall it is the wall's top, although the ball there
-  // merely touches the wall (or, in a corner, both walls). A real gouge is an open set, so
-  // the smallest deficit over q and its eight neighbours 1e-6 mm away tells them apart.
-  auto deficit_at = [&](const Vec3& q) {
-    double d = INFINITY;
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy) {
-        const double z = index.query(q.x() + 1e-6 * dx, q.y() + 1e-6 * dy).tip_z;
-        d = std::min(d, std::max(floor_z, z) - q.z());
-      }
-    return d;
-  };
+  auto deficit_at = [&](const Vec3& q) { return surface_deficit(index, floor_z, q); };
   auto closest = [&](const ElementRef& e) -> std::function<Vec3(const Vec3&)> {
     const auto& V = mesh.vertices;
     if (e.kind == 0) {
@@ -409,6 +398,7 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
   // two elements at the middle height.
   Stopwatch refine_clock;
   std::vector<std::vector<Vec3>> pieces(joined.size());
+  std::vector<std::vector<std::array<Vec3, 2>>> normals(joined.size());
   std::vector<std::uint64_t> added(joined.size(), 0);
   par::for_each(joined.size(), 1, [&](std::size_t k) {
     std::vector<PencilCandidate> full;
@@ -433,44 +423,34 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
       full.push_back(n.c);
       prev = &n;
     }
-    for (const PencilCandidate& c : full) pieces[k].push_back(c.p);
+    for (const PencilCandidate& c : full) {
+      pieces[k].push_back(c.p);
+      normals[k].push_back({c.b1, c.b2});
+    }
   });
   for (std::uint64_t a : added) st.refined_points += a;
   st.refine_s = refine_clock.seconds();
-  std::erase_if(pieces, [&](const std::vector<Vec3>& pc) {
-    return pc.size() < 2 || polyline_length(pc) < std::max(p.min_length, 1e-9);
-  });
+  {
+    std::size_t w = 0;
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      if (pieces[k].size() < 2 || polyline_length(pieces[k]) < std::max(p.min_length, 1e-9))
+        continue;
+      if (w != k) {
+        pieces[w] = std::move(pieces[k]);
+        normals[w] = std::move(normals[k]);
+      }
+      ++w;
+    }
+    pieces.resize(w);
+    normals.resize(w);
+  }
 
   // 4. Never below the CL surface: chords checked by the point drop-cutter, lifted.
   Stopwatch check_clock;
   const double spacing = std::max(0.02, 0.1 * p.interval);
   std::vector<std::uint64_t> lifted(pieces.size(), 0);
   par::for_each(pieces.size(), 1, [&](std::size_t k) {
-    auto& pts = pieces[k];
-    std::vector<bool> raised(pts.size(), false);
-    for (int pass = 0; pass < 3; ++pass) {  // a lift can expose a neighbouring chord
-      std::vector<double> lift(pts.size(), 0);
-      for (std::size_t i = 0; i < pts.size(); ++i) lift[i] = std::max(0.0, deficit_at(pts[i]));
-      for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-        const Vec3 a = pts[i], b = pts[i + 1];
-        const int n = std::max(16, int(std::ceil((b - a).norm() / spacing)));
-        double deficit = 0;
-        for (int j = 1; j < n; ++j) {
-          const Vec3 q = a + (b - a) * (double(j) / n);
-          deficit = std::max(deficit, deficit_at(q));
-        }
-        lift[i] = std::max(lift[i], deficit);
-        lift[i + 1] = std::max(lift[i + 1], deficit);
-      }
-      bool any = false;
-      for (std::size_t i = 0; i < pts.size(); ++i)
-        if (lift[i] > 0) {
-          pts[i].z() += lift[i];
-          raised[i] = any = true;
-        }
-      if (!any) break;
-    }
-    lifted[k] = std::size_t(std::count(raised.begin(), raised.end(), true));
+    lifted[k] = lift_above_surface(index, floor_z, spacing, pieces[k]);
   });
   for (std::uint64_t l : lifted) st.lifted_points += l;
   st.check_s = check_clock.seconds();
@@ -478,10 +458,15 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
   // 5. Order and orient.
   for (const OrderedPath& o : order_paths(pieces)) {
     std::vector<Vec3> path = pieces[o.index];
-    if (o.reversed) std::reverse(path.begin(), path.end());
+    std::vector<std::array<Vec3, 2>> b = normals[o.index];
+    if (o.reversed) {
+      std::reverse(path.begin(), path.end());
+      std::reverse(b.begin(), b.end());
+    }
     if (!res.paths.empty()) st.air_length += (path.front() - res.paths.back().back()).norm();
     st.traced_length += polyline_length(path);
     res.paths.push_back(std::move(path));
+    res.path_normals.push_back(std::move(b));
   }
   st.paths = res.paths.size();
   return res;

@@ -23,6 +23,7 @@
 //      moves between them.
 // Output: one cut path per piece (tool tip, mm), a rapid before every piece but the first,
 // and the pencil points with their bi-contact vectors and angle.
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -75,6 +76,9 @@ struct PencilStats {
 
 struct PencilResult {
   std::vector<std::vector<Vec3>> paths;  // in cutting order, tool tip, mm
+  // Per path point, the bi-contact vectors b1, b2 of the crease there (unit, contact to ball
+  // centre; a lifted point keeps those of the crease point below it).
+  std::vector<std::vector<std::array<Vec3, 2>>> path_normals;
   std::vector<PencilPoint> points;       // every pencil point (angle >= threshold)
   PencilStats stats;
 };

@@ -1,0 +1,222 @@
+#include "engine/fillet.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "engine/drop_index.hpp"
+#include "engine/facet_table.hpp"
+#include "engine/mesh_distance.hpp"
+#include "engine/parallel.hpp"
+#include "engine/surface_check.hpp"
+#include "kernels/cleanup/pencil.hpp"
+
+namespace ncpath {
+
+std::string validate(const FilletParams& p) {
+  std::ostringstream os;
+  if (!(std::isfinite(p.reference_diameter) && p.reference_diameter > 0))
+    os << "reference_diameter must be a positive number of mm, got " << p.reference_diameter;
+  else if (!(std::isfinite(p.stepover) && p.stepover >= 0))
+    os << "stepover must be >= 0 mm (0 = from the scallop height), got " << p.stepover;
+  else if (p.stepover == 0 && !(std::isfinite(p.scallop) && p.scallop > 0))
+    os << "scallop must be a positive number of mm when stepover is 0, got " << p.scallop;
+  else if (p.max_passes < 1)
+    os << "max_passes must be >= 1";
+  else if (std::string e = validate(p.pencil); !e.empty())
+    os << "pencil: " << e;
+  return os.str();
+}
+
+namespace {
+
+// b1 turned toward b2 by angle th about t = b1 x b2 / |b1 x b2| (t is perpendicular to b1).
+Vec3 turn(const Vec3& b1, const Vec3& t, double th) {
+  return b1 * std::cos(th) + t.cross(b1) * std::sin(th);
+}
+
+struct PathOut {
+  std::vector<std::vector<Vec3>> polys;
+  std::vector<PathKind> kinds;
+  std::uint64_t passes = 0, points = 0, rays = 0, misses = 0, unreachable = 0, lifted = 0;
+  double length = 0;
+};
+
+}  // namespace
+
+FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const FilletParams& p,
+                        RunControl& control) {
+  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
+  if (cutter.type != CutterType::kBall)
+    throw std::invalid_argument("tool: fillet-cut needs a ball-end mill");
+  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
+  const double r = cutter.radius, R_ref = 0.5 * p.reference_diameter;
+  if (!(r < R_ref))
+    throw std::invalid_argument("reference_diameter (" + std::to_string(p.reference_diameter) +
+                                " mm) must be larger than the clean-up tool's diameter (" +
+                                std::to_string(2 * r) + " mm)");
+  FilletResult res;
+  FilletStats& st = res.stats;
+
+  Stopwatch pencil_clock;
+  const PencilResult ref = run_pencil(mesh, ball_cutter(p.reference_diameter), p.pencil, control);
+  st.pencil = ref.stats;
+  st.pencil_s = pencil_clock.seconds();
+  if (control.cancel.load()) throw Cancelled{};
+
+  Stopwatch rays_clock;
+  const MeshDistance distance(mesh);
+  const FacetTable table = build_facet_table(mesh);
+  const DropIndex index(table, cutter);
+  const double floor_z = p.pencil.floor_z.value_or(bounding_box(mesh).lo.z());
+  const double step =
+      p.stepover > 0 ? p.stepover : 2 * std::sqrt(std::max(0.0, 2 * r * p.scallop - p.scallop * p.scallop));
+  const double spacing = std::max(0.02, 0.1 * p.pencil.interval);
+
+  std::vector<PathOut> outs(ref.paths.size());
+  par::for_each(ref.paths.size(), 1, [&](std::size_t k) {
+    PathOut& out = outs[k];
+    const auto& pts = ref.paths[k];
+    // b1, b2 ordered so that b1 x b2 points along the path: pass j then stays on one side.
+    std::vector<std::array<Vec3, 2>> nrm = ref.path_normals[k];
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Vec3 along = pts[std::min(i + 1, pts.size() - 1)] - pts[i > 0 ? i - 1 : 0];
+      if (nrm[i][0].cross(nrm[i][1]).dot(along) < 0) std::swap(nrm[i][0], nrm[i][1]);
+    }
+    // Ball centre of the small ball on the ray from the reference centre along -v.
+    auto hit = [&](const Vec3& P, const Vec3& v, Vec3& tip) {
+      ++out.rays;
+      const std::optional<double> s = distance.march(P, -v, r, 2 * R_ref);
+      if (!s) {
+        ++out.misses;
+        return false;
+      }
+      tip = P - *s * v - Vec3(0, 0, r);
+      if (surface_deficit(index, floor_z, tip) > 1e-7) {  // not reachable from above
+        ++out.unreachable;
+        return false;
+      }
+      return true;
+    };
+    // Passes: from the step-over (arc length of the centres at the widest point); with a
+    // scallop height, doubled until the cusp between neighbouring passes is within it at
+    // every 8th point of the path: the cusp tip is where the two balls' spheres meet on the
+    // part's side, and the material left there is its exact distance to the mesh.
+    double widest = 0;
+    std::size_t widest_i = 0;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Vec3 P = pts[i] + Vec3(0, 0, R_ref);
+      const Vec3 &b1 = nrm[i][0], &b2 = nrm[i][1];
+      const double beta = bicontact_angle(b1, b2);
+      const Vec3 t = crease_tangent(b1, b2);
+      if (t.isZero()) continue;
+      Vec3 prev;
+      double len = 0;
+      bool have = false;
+      for (int j = 0; j <= 16; ++j) {
+        Vec3 tip;
+        if (!hit(P, turn(b1, t, beta * j / 16), tip)) continue;
+        if (have) len += (tip - prev).norm();
+        prev = tip;
+        have = true;
+      }
+      if (len > widest) {
+        widest = len;
+        widest_i = i;
+      }
+    }
+    auto n = std::uint32_t(std::clamp(std::ceil(widest / step), 1.0, double(p.max_passes)));
+    auto worst_cusp = [&](std::uint32_t m) -> double {
+      double worst = 0;
+      for (std::size_t i = widest_i % 8; i < pts.size(); i += 8) {
+        const Vec3 P = pts[i] + Vec3(0, 0, R_ref);
+        const Vec3 &b1 = nrm[i][0], &b2 = nrm[i][1];
+        const double beta = bicontact_angle(b1, b2);
+        const Vec3 t = crease_tangent(b1, b2);
+        if (t.isZero()) continue;
+        Vec3 a, b;
+        for (std::uint32_t j = 0; j < m; ++j) {
+          const Vec3 vm = turn(b1, t, beta * (j + 0.5) / m);
+          if (!hit(P, turn(b1, t, beta * j / m), a) || !hit(P, turn(b1, t, beta * (j + 1) / m), b))
+            continue;
+          const Vec3 ca = a + Vec3(0, 0, r), cb = b + Vec3(0, 0, r), mid = 0.5 * (ca + cb);
+          const Vec3 ab = cb - ca;
+          const double half = 0.5 * ab.norm();
+          if (!(half < r)) return double(INFINITY);  // the balls do not even overlap
+          Vec3 d = -vm - ab * (-vm).dot(ab) / ab.squaredNorm();
+          if (!(d.norm() > 0)) continue;
+          const Vec3 x = mid + d.normalized() * std::sqrt(r * r - half * half);
+          worst = std::max(worst, distance.closest(x, 2 * R_ref).distance);
+        }
+      }
+      return worst;
+    };
+    if (p.stepover == 0)
+      while (n < p.max_passes && worst_cusp(n) > p.scallop) n = std::min(p.max_passes, 2 * n);
+    std::vector<std::vector<Vec3>> passes(n + 1);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Vec3 P = pts[i] + Vec3(0, 0, R_ref);
+      const Vec3 &b1 = nrm[i][0], &b2 = nrm[i][1];
+      const double beta = bicontact_angle(b1, b2);
+      const Vec3 t = crease_tangent(b1, b2);
+      if (t.isZero()) continue;
+      for (std::uint32_t j = 0; j <= n; ++j) {
+        Vec3 tip;
+        if (hit(P, turn(b1, t, beta * j / n), tip)) passes[j].push_back(tip);
+      }
+    }
+    // Zig-zag, linked at depth.
+    for (std::uint32_t j = 0; j <= n; ++j) {
+      auto& pass = passes[j];
+      if (pass.size() < 2) continue;
+      if (j % 2 == 1) std::reverse(pass.begin(), pass.end());
+      out.lifted += lift_above_surface(index, floor_z, spacing, pass);
+      if (!out.polys.empty()) {
+        std::vector<Vec3> link = {out.polys.back().back(), pass.front()};
+        out.lifted += lift_above_surface(index, floor_z, spacing, link);
+        out.polys.push_back(std::move(link));
+        out.kinds.push_back(PathKind::kLinkAtDepth);
+      }
+      for (std::size_t i = 1; i < pass.size(); ++i) out.length += (pass[i] - pass[i - 1]).norm();
+      out.points += pass.size();
+      ++out.passes;
+      out.polys.push_back(std::move(pass));
+      out.kinds.push_back(PathKind::kCut);
+    }
+  });
+  st.rays_s = rays_clock.seconds();
+  for (PathOut& o : outs) {
+    st.passes += o.passes;
+    st.points += o.points;
+    st.rays += o.rays;
+    st.misses += o.misses;
+    st.unreachable += o.unreachable;
+    st.lifted_points += o.lifted;
+    st.cut_length += o.length;
+    if (o.polys.empty()) continue;
+    if (!res.paths.empty()) {
+      res.paths.push_back({o.polys.front().front()});
+      res.kinds.push_back(PathKind::kRapid);
+    }
+    for (std::size_t i = 0; i < o.polys.size(); ++i) {
+      res.paths.push_back(std::move(o.polys[i]));
+      res.kinds.push_back(o.kinds[i]);
+    }
+  }
+  return res;
+}
+
+ClChunk fillet_chunk(const FilletResult& r) {
+  ClChunk ch;
+  for (std::size_t i = 0; i < r.paths.size(); ++i) {
+    for (const Vec3& q : r.paths[i]) ch.xyz.insert(ch.xyz.end(), {q.x(), q.y(), q.z()});
+    ch.contact.insert(ch.contact.end(), r.paths[i].size(), std::uint8_t(ContactKind::kEdge));
+    ch.path_sizes.push_back(std::uint32_t(r.paths[i].size()));
+    ch.path_kinds.push_back(std::uint8_t(r.kinds[i]));
+  }
+  return ch;
+}
+
+}  // namespace ncpath

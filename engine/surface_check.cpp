@@ -1,0 +1,45 @@
+#include "engine/surface_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ncpath {
+
+double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
+  double d = INFINITY;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy) {
+      const double z = index.query(q.x() + 1e-6 * dx, q.y() + 1e-6 * dy).tip_z;
+      d = std::min(d, std::max(floor_z, z) - q.z());
+    }
+  return d;
+}
+
+std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
+                               std::vector<Vec3>& pts) {
+  std::vector<bool> raised(pts.size(), false);
+  for (int pass = 0; pass < 3; ++pass) {
+    std::vector<double> lift(pts.size(), 0);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      lift[i] = std::max(0.0, surface_deficit(index, floor_z, pts[i]));
+    for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
+      const Vec3 a = pts[i], b = pts[i + 1];
+      const int n = std::max(16, int(std::ceil((b - a).norm() / spacing)));
+      double deficit = 0;
+      for (int j = 1; j < n; ++j)
+        deficit = std::max(deficit, surface_deficit(index, floor_z, a + (b - a) * (double(j) / n)));
+      lift[i] = std::max(lift[i], deficit);
+      lift[i + 1] = std::max(lift[i + 1], deficit);
+    }
+    bool any = false;
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      if (lift[i] > 0) {
+        pts[i].z() += lift[i];
+        raised[i] = any = true;
+      }
+    if (!any) break;
+  }
+  return std::size_t(std::count(raised.begin(), raised.end(), true));
+}
+
+}  // namespace ncpath
