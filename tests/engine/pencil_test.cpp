@@ -133,23 +133,7 @@ TEST(Pencil, BoxPocketFloorAndCornerCreases) {
 }
 
 TEST(Pencil, ConvexHemisphereHasNoPencilPath) {
-  TriangleMesh m;
-  const int rings = 12, sectors = 32;
-  const double rho = 10;
-  m.vertices.emplace_back(0, 0, rho);
-  for (int i = 1; i <= rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      const double th = 0.5 * std::numbers::pi * i / rings, ph = 2 * std::numbers::pi * j / sectors;
-      m.vertices.emplace_back(rho * std::sin(th) * std::cos(ph), rho * std::sin(th) * std::sin(ph),
-                              rho * std::cos(th));
-    }
-  auto id = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * sectors + (j % sectors)); };
-  for (int j = 0; j < sectors; ++j) m.facets.push_back({0, id(1, j), id(1, j + 1)});
-  for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
+  const TriangleMesh m = scan_test::uv_hemisphere(10, 12, 32, Vec3(0, 0, 0));
   PencilParams p;
   p.interval = 0.5;
   p.step_down = 1;

@@ -10,21 +10,12 @@
 #include "engine/drop_index.hpp"
 #include "engine/raster.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
+#include "tests/engine/mesh_test_support.hpp"
 
 namespace ncpath {
 namespace {
 
-TriangleMesh load(const std::string& name) {
-  const std::filesystem::path p =
-      std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes" / (name + ".off");
-  if (!std::filesystem::exists(p))
-    throw std::runtime_error(p.string() + " is missing: run datasets/fetch-cgal-meshes.sh");
-  io::MeshReadResult r = io::read_mesh(p);
-  MeshTransform t;
-  t.fit_xy_mm = 200;
-  EXPECT_TRUE(apply_transform(t, r.mesh).ok());
-  return std::move(r.mesh);
-}
+using test_meshes::load;
 
 const Cutter kCutters[] = {ball_cutter(5), flat_cutter(6), bull_nose_cutter(8, 1.5)};
 

@@ -275,35 +275,13 @@ TEST(Envelope, LyingCylindersGiveLinesAndEllipses) {
   }
 }
 
-// A UV sphere of radius rho (vertices on the sphere), upper half, centre (10, 10, 0).
-TriangleMesh uv_hemisphere(double rho, int rings, int sectors) {
-  TriangleMesh m;
-  m.vertices.emplace_back(10, 10, rho);  // pole
-  for (int i = 1; i <= rings; ++i) {
-    const double th = 0.5 * M_PI * i / rings;
-    for (int j = 0; j < sectors; ++j) {
-      const double ph = 2 * M_PI * j / sectors;
-      m.vertices.emplace_back(10 + rho * std::sin(th) * std::cos(ph),
-                              10 + rho * std::sin(th) * std::sin(ph), rho * std::cos(th));
-    }
-  }
-  auto id = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * sectors + (j % sectors)); };
-  for (int j = 0; j < sectors; ++j) m.facets.push_back({0, id(1, j), id(1, j + 1)});
-  for (int i = 1; i < rings; ++i)
-    for (int j = 0; j < sectors; ++j) {
-      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
-
 TEST(Envelope, SphereIsSmoothAndBetweenItsBounds) {
   // Over a convex faceted sphere the CL curve has no sharp-concave point above the floor,
   // and the ball centre stays between rho cos(a) + R and rho + R from the sphere's centre
   // (a: the largest angle between a facet's normal and its vertices, so the facets lie
   // between the spheres of radius rho cos(a) and rho).
   const double rho = 10, R = 2.5;
-  const TriangleMesh mesh = uv_hemisphere(rho, 24, 64);
+  const TriangleMesh mesh = uv_hemisphere(rho, 24, 64, Vec3(10, 10, 0));
   double cos_a = 1;
   for (const auto& f : mesh.facets) {
     const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];

@@ -124,4 +124,27 @@ inline TriangleMesh random_terrain(std::mt19937_64& rng, int n) {
   return m;
 }
 
+// A UV sphere of radius rho (vertices on the sphere), upper half, centred at c; rings from
+// the pole to the equator, sectors around.
+inline TriangleMesh uv_hemisphere(double rho, int rings, int sectors, const Vec3& c) {
+  TriangleMesh m;
+  m.vertices.push_back(c + Vec3(0, 0, rho));  // pole
+  for (int i = 1; i <= rings; ++i) {
+    const double th = 0.5 * M_PI * i / rings;
+    for (int j = 0; j < sectors; ++j) {
+      const double ph = 2 * M_PI * j / sectors;
+      m.vertices.push_back(c + rho * Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
+                                          std::cos(th)));
+    }
+  }
+  auto id = [&](int i, int j) { return std::uint32_t(1 + (i - 1) * sectors + (j % sectors)); };
+  for (int j = 0; j < sectors; ++j) m.facets.push_back({0, id(1, j), id(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < sectors; ++j) {
+      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
 }  // namespace ncpath::scan_test
