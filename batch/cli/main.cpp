@@ -1,6 +1,6 @@
-// ncpath command line: raster, scan, drop, offset, pocket, pocket3d and run (a TOML batch). Every
-// command builds the same JobSpec a batch file would, so a job behaves the same whichever way it
-// was given.
+// ncpath command line: raster, scan, zlevel, pencil, drop, offset, pocket, pocket3d and run (a
+// TOML batch). Every command builds the same JobSpec a batch file would, so a job behaves the
+// same whichever way it was given.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -8,108 +8,15 @@
 #include <iostream>
 #include <optional>
 
+#include "batch/cli/cli_options.hpp"
+#include "batch/cli/mesh_op_cli.hpp"
 #include "batch/cli/progress_bar.hpp"
 #include "batch/jobs/job_runner.hpp"
 
 using namespace ncpath;
+using namespace ncpath::cli;
 
 namespace {
-
-struct Common {
-  std::string mesh, tool = "ball:5", out = "ncpath-out.h5", name;
-  int threads = 0;
-  bool quiet = false;
-  std::optional<double> fit_xy;
-  double scale = 1;
-  std::vector<double> translate;
-};
-
-void add_common(CLI::App* app, Common& c) {
-  app->add_option("--mesh", c.mesh, "Part mesh: STL (binary or ASCII) or OFF")->required();
-  app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
-      ->capture_default_str();
-  app->add_option("--out", c.out, "HDF5 file to write (see docs/hdf5-schema.md)")
-      ->capture_default_str();
-  app->add_option("--name", c.name, "Job name inside the HDF5 file (default: the operation)");
-  app->add_option("--threads", c.threads, "Worker threads, 0 = all cores")->capture_default_str();
-  app->add_option(
-      "--fit-xy", c.fit_xy,
-      "Scale the mesh uniformly about the origin so its longest xy side is this many mm");
-  app->add_option("--scale", c.scale, "Uniform scale factor (applied with --fit-xy)")
-      ->capture_default_str();
-  app->add_option("--translate", c.translate, "Translation x y z in mm, after scaling")
-      ->expected(3);
-  app->add_flag("-q,--quiet", c.quiet, "No progress bar");
-}
-
-struct GcodeCli {
-  std::string path, dialect = "linuxcnc";
-  out::GcodeParams params;
-  std::optional<double> safe_z;
-};
-
-void add_gcode(CLI::App* app, GcodeCli& g) {
-  app->add_option("--gcode", g.path, "Also write the paths as G-code to this file (docs/gcode.md)");
-  app->add_option("--dialect", g.dialect, "G-code dialect")
-      ->check(CLI::IsMember({"linuxcnc", "grbl"}))
-      ->capture_default_str();
-  app->add_option("--feed", g.params.feed, "Cutting feed (mm/min)")->capture_default_str();
-  app->add_option("--plunge-feed", g.params.plunge_feed, "Plunge feed (mm/min)")
-      ->capture_default_str();
-  app->add_option("--spindle", g.params.spindle_rpm, "Spindle speed (rev/min)")
-      ->capture_default_str();
-  app->add_option("--safe-z", g.safe_z,
-                  "Safe height for rapid moves (mm); default: 5 above the part's top (meshes) "
-                  "or 5 (pockets)");
-}
-
-void apply_gcode(const GcodeCli& g, jobs::JobSpec& j) {
-  if (g.path.empty()) return;
-  j.gcode = g.path;
-  j.gcode_params = g.params;
-  j.gcode_safe_z = g.safe_z;
-  if (std::string e = jobs::parse_dialect(g.dialect, j.gcode_params.dialect);
-      !e.empty() && j.error.empty()) {
-    j.error = "--dialect: " + e;
-    j.error_status = "invalid_parameter";
-  }
-}
-
-jobs::JobSpec job_from(const Common& c, jobs::Operation op) {
-  jobs::JobSpec j;
-  j.operation = op;
-  j.name = c.name.empty() ? jobs::operation_name(op) : c.name;
-  j.input = c.mesh;
-  j.tool_text = c.tool;
-  if (std::string e = jobs::parse_tool(c.tool, j.tool); !e.empty()) {
-    j.error = "--tool: " + e;
-    j.error_status = "invalid_parameter";
-  }
-  j.transform.scale = c.scale;
-  j.transform.fit_xy_mm = c.fit_xy;
-  if (c.translate.size() == 3)
-    j.transform.translate = Vec3(c.translate[0], c.translate[1], c.translate[2]);
-  if (std::string e = validate(j.transform); !e.empty() && j.error.empty()) {
-    j.error = "--" + e;
-    j.error_status = "invalid_parameter";
-  }
-  return j;
-}
-
-// Adds the job of a mesh command (raster, scan, drop) to the batch: `param_error` (the first
-// problem of its parameters, "" when none) is reported unless the tool or transform is bad.
-void add_mesh_job(const Common& c, const GcodeCli& g, jobs::JobSpec j,
-                  const std::string& param_error, jobs::BatchSpec& batch, bool& quiet) {
-  if (!param_error.empty() && j.error.empty()) {
-    j.error = "--" + param_error;
-    j.error_status = "invalid_parameter";
-  }
-  apply_gcode(g, j);
-  batch.output = c.out;
-  batch.threads = c.threads;
-  quiet = c.quiet;
-  batch.jobs.push_back(std::move(j));
-}
 
 // Options of the profile commands (offset, pocket, pocket3d); defaults as in OffsetParams /
 // PocketParams.
@@ -303,6 +210,9 @@ int main(int argc, char** argv) {
   scan->add_option("--floor-z", scan_floor_z,
                    "Height where the tool touches nothing (mm); default: the part's lowest z");
 
+  ZLevelCommand zlevel(app);
+  PencilCommand pencil(app);
+
   Common dc;
   std::string points;
   CLI::App* drop = app.add_subcommand("drop", "Drop the tool at given xy points (CSV x,y lines)");
@@ -397,6 +307,10 @@ int main(int argc, char** argv) {
     scp.floor_z = scan_floor_z;
     j.scan = scp;
     add_mesh_job(scc, scan_g, std::move(j), e.empty() ? validate(scp) : e, batch, quiet);
+  } else if (zlevel.parsed()) {
+    zlevel.add_job(batch, quiet);
+  } else if (pencil.parsed()) {
+    pencil.add_job(batch, quiet);
   } else if (offset->parsed()) {
     add_profile_job(
         oc, jobs::Operation::kOffset,

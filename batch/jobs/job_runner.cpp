@@ -7,10 +7,12 @@
 
 #include "batch/io/mesh_reader.hpp"
 #include "batch/jobs/offset_job.hpp"
+#include "batch/jobs/pencil_job.hpp"
 #include "batch/jobs/pocket3d_job.hpp"
 #include "batch/jobs/pocket_job.hpp"
 #include "batch/jobs/points_csv.hpp"
 #include "batch/jobs/scan_job.hpp"
+#include "batch/jobs/zlevel_job.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "engine/drop_points.hpp"
 #include "engine/parallel.hpp"
@@ -25,7 +27,8 @@ using out::StatValue;
 
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
-// Reads the mesh, transforms it and runs the raster, scan or drop operation into cl.
+// Reads the mesh, transforms it and runs the raster, scan, zlevel, pencil or drop operation
+// into cl.
 void run_mesh_job(const JobSpec& job, out::ClJob& cl,
                   const std::function<out::GcodeWriter*(double part_top)>& open_gcode,
                   const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o) {
@@ -49,11 +52,24 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
     o.compute_s = r.compute_s;
     return;
   }
+  if (job.operation == Operation::kZLevel) {
+    const ZLevelJobSummary r = run_zlevel_job(job, in.mesh, cl, gcode, control, stats);
+    o.points = r.points;
+    o.compute_s = r.compute_s;
+    return;
+  }
+  if (job.operation == Operation::kPencil) {
+    const PencilJobSummary r = run_pencil_job(job, in.mesh, cl, gcode, control, stats);
+    o.points = r.points;
+    o.compute_s = r.compute_s;
+    return;
+  }
   auto sink = [&](const ClChunk& c) {
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
     if (gcode) gcode->append(c);
   };
-  // Statistics raster and drop both have (scan writes its own, see scan_job.cpp).
+  // Statistics raster and drop both have (scan, zlevel and pencil write their own, see
+  // scan_job.cpp, zlevel_job.cpp, pencil_job.cpp).
   auto common = [&](std::uint64_t facets, std::uint64_t degenerate, double index_s,
                     double compute_s, double sink_s) {
     o.compute_s = compute_s;

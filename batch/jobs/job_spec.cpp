@@ -10,6 +10,9 @@
 #include <toml++/toml.h>
 #include <nlohmann/json.hpp>
 
+#include "batch/jobs/mesh_op_params.hpp"
+#include "batch/jobs/toml_keys.hpp"
+
 namespace ncpath::jobs {
 
 const char* operation_name(Operation op) {
@@ -26,6 +29,10 @@ const char* operation_name(Operation op) {
       return "pocket3d";
     case Operation::kScan:
       return "scan";
+    case Operation::kZLevel:
+      return "zlevel";
+    case Operation::kPencil:
+      return "pencil";
   }
   return "?";
 }
@@ -215,81 +222,6 @@ std::string parse_tool(const std::string& text, Cutter& out) {
 
 namespace {
 
-// Reads the keys of one TOML table, remembering which were used, so that anything left
-// over can be reported as an unknown key.
-class Keys {
- public:
-  Keys(const toml::table& t, std::string prefix) : t_(t), prefix_(std::move(prefix)) {}
-
-  bool number(const char* key, double& out) {
-    const toml::node* n = take(key);
-    if (!n) return false;
-    if (auto v = n->value<double>()) {
-      out = *v;
-      return true;
-    }
-    fail(key, "must be a number");
-    return false;
-  }
-  bool string(const char* key, std::string& out) {
-    const toml::node* n = take(key);
-    if (!n) return false;
-    if (auto v = n->value<std::string>()) {
-      out = *v;
-      return true;
-    }
-    fail(key, "must be a string");
-    return false;
-  }
-  bool numbers(const char* key, std::size_t count, double* out) {
-    const toml::node* n = take(key);
-    if (!n) return false;
-    const toml::array* a = n->as_array();
-    if (!a || a->size() != count) {
-      fail(key, "must be an array of " + std::to_string(count) + " numbers");
-      return false;
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      auto v = (*a)[i].value<double>();
-      if (!v) {
-        fail(key, "must be an array of " + std::to_string(count) + " numbers");
-        return false;
-      }
-      out[i] = *v;
-    }
-    return true;
-  }
-  bool is_string(const char* key) const {
-    const toml::node* n = t_.get(key);
-    return n && n->is_string();
-  }
-  const toml::table* table(const char* key) {
-    const toml::node* n = take(key);
-    if (!n) return nullptr;
-    if (const toml::table* t = n->as_table()) return t;
-    fail(key, "must be a table");
-    return nullptr;
-  }
-  void fail(const std::string& key, const std::string& what) {
-    if (error.empty()) error = "'" + prefix_ + key + "' " + what;
-  }
-  // Call once every known key was read.
-  void finish() {
-    for (const auto& [k, v] : t_)
-      if (!used_.count(std::string(k.str()))) fail(std::string(k.str()), "is not a known key");
-  }
-  std::string error;
-
- private:
-  const toml::node* take(const char* key) {
-    used_.insert(key);
-    return t_.get(key);
-  }
-  const toml::table& t_;
-  std::string prefix_;
-  std::set<std::string> used_;
-};
-
 void parse_raster_params(Keys& k, RasterParams& p) {
   std::string dir;
   if (k.string("direction", dir)) {
@@ -418,10 +350,14 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     job.operation = Operation::kPocket3d;
   else if (op == "scan")
     job.operation = Operation::kScan;
+  else if (op == "zlevel")
+    job.operation = Operation::kZLevel;
+  else if (op == "pencil")
+    job.operation = Operation::kPencil;
   else
     k.fail("operation",
-           "must be \"raster\", \"scan\", \"drop\", \"offset\", \"pocket\" or \"pocket3d\", "
-           "got \"" +
+           "must be \"raster\", \"scan\", \"zlevel\", \"pencil\", \"drop\", \"offset\", "
+           "\"pocket\" or \"pocket3d\", got \"" +
                op + "\"");
   const bool profile_op = job.operation == Operation::kOffset ||
                           job.operation == Operation::kPocket ||
@@ -464,6 +400,10 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       parse_raster_params(pk, job.raster);
     } else if (job.operation == Operation::kScan) {
       parse_scan_params(pk, job.scan);
+    } else if (job.operation == Operation::kZLevel) {
+      parse_zlevel_params(pk, job.zlevel);
+    } else if (job.operation == Operation::kPencil) {
+      parse_pencil_params(pk, job.pencil);
     } else if (job.operation == Operation::kOffset) {
       parse_offset_params(pk, job);
     } else if (job.operation == Operation::kPocket) {
@@ -479,6 +419,10 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       if (std::string e = validate(job.raster); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kScan)
       if (std::string e = validate(job.scan); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kZLevel)
+      if (std::string e = validate(job.zlevel); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kPencil)
+      if (std::string e = validate(job.pencil); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kOffset)
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPocket)
@@ -512,6 +456,10 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     k.fail("params.depth", "is required for a pocket job (mm below the top, > 0)");
   if (job.operation == Operation::kPocket3d && !(job.pocket3d.scallop > 0) && k.error.empty())
     k.fail("params.scallop", "is required for a pocket3d job (cusp height between passes, mm)");
+  if (job.operation == Operation::kZLevel && k.error.empty())  // no `params` table at all
+    if (job.zlevel.levels.empty() && !(job.zlevel.step_down > 0))
+      k.error =
+          check_zlevel_choice(false, false, job.zlevel, "'params.levels'", "'params.step_down'");
   if (job.operation == Operation::kDrop && job.points.empty())
     k.fail("params.points", "is required for a drop job (CSV of x,y lines)");
   k.finish();
@@ -618,6 +566,10 @@ std::string params_json(const JobSpec& job) {
     j["rect"] = p.rect ? nlohmann::ordered_json(*p.rect) : nlohmann::ordered_json(nullptr);
     j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
     j["chunk_planes"] = p.chunk_planes;
+  } else if (job.operation == Operation::kZLevel) {
+    zlevel_params_json(job.zlevel, j);
+  } else if (job.operation == Operation::kPencil) {
+    pencil_params_json(job.pencil, j);
   } else if (job.operation == Operation::kOffset) {
     j["stepover"] = job.offset.stepover;
     j["stock"] = job.offset.stock;

@@ -9,7 +9,8 @@
 //   threads = 0                  # 0 = all cores
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
-//   operation = "raster"          # "raster", "scan", "drop", "offset", "pocket" or "pocket3d"
+//   operation = "raster"          # "raster", "scan", "zlevel", "pencil", "drop", "offset",
+//                                 # "pocket" or "pocket3d"
 //   input     = "../datasets/cache/meshes/bunny00.off"
 //   surface   = "bottom.toml"     # pocket3d only: the bottom surface
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
@@ -28,15 +29,26 @@
 #include <vector>
 
 #include "batch/output/gcode_writer.hpp"
+#include "engine/pencil.hpp"
 #include "engine/pocket_path.hpp"
 #include "engine/raster.hpp"
 #include "engine/scan.hpp"
+#include "engine/zlevel.hpp"
 #include "kernels/cutters/cutter.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::jobs {
 
-enum class Operation : std::uint8_t { kRaster, kDrop, kOffset, kPocket, kPocket3d, kScan };
+enum class Operation : std::uint8_t {
+  kRaster,
+  kDrop,
+  kOffset,
+  kPocket,
+  kPocket3d,
+  kScan,
+  kZLevel,
+  kPencil
+};
 
 // The offset operation (pocket offset loops, unlinked; PocketParams for tool paths).
 struct OffsetParams {
@@ -98,7 +110,9 @@ struct JobSpec {
   std::string tool_text;  // as the user wrote it, e.g. "ball:5"
   Cutter tool;
   RasterParams raster;
-  ScanParams scan;  // the scan operation (curve-based drive-plane scanning, ball only)
+  ScanParams scan;        // the scan operation (curve-based drive-plane scanning, ball only)
+  ZLevelOpParams zlevel;  // the zlevel operation (z-level contours, ball only)
+  PencilParams pencil;    // the pencil operation (pencil-cut of concave creases, ball only)
   OffsetParams offset;
   PocketParams pocket;
   Pocket3dJobParams pocket3d;
@@ -127,12 +141,19 @@ BatchSpec parse_batch_file(const std::filesystem::path& path);
 BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
                            const std::string& source_name);
 
-// "raster", "drop", "offset", "pocket", "pocket3d", "scan"
+// "raster", "drop", "offset", "pocket", "pocket3d", "scan", "zlevel", "pencil"
 const char* operation_name(Operation op);
 
 // "x", "y", "both" -> families; error message to follow the key's name, or "".
 std::string parse_families(const std::string& text, ScanFamilies& out);
 const char* families_name(ScanFamilies families);  // "x", "y", "both"
+
+// The choice of a zlevel job between a list of levels and a step-down: exactly one of them
+// given (has_*: the key or option is present), and usable. "" or the problem, naming the keys
+// as spelled by the caller (levels_key "'params.levels'" or "--levels", step_key likewise).
+// The other parameters are checked by validate(ZLevelOpParams). (In mesh_op_params.cpp.)
+std::string check_zlevel_choice(bool has_levels, bool has_step_down, const ZLevelOpParams& params,
+                                const std::string& levels_key, const std::string& step_key);
 
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);

@@ -1,0 +1,92 @@
+#include "batch/cli/mesh_op_cli.hpp"
+
+#include <string>
+
+namespace ncpath::cli {
+
+namespace {
+
+// The ball-only mesh commands: the common options, G-code, and the tool described as a ball.
+CLI::App* add_ball_command(CLI::App& app, const char* name, const char* description, Common& common,
+                           GcodeCli& gcode) {
+  CLI::App* cmd = app.add_subcommand(name, description);
+  add_common(cmd, common);
+  add_gcode(cmd, gcode);
+  cmd->get_option("--tool")->description("Ball-end mill ball:D (mm); flat and bull are refused");
+  return cmd;
+}
+
+}  // namespace
+
+ZLevelCommand::ZLevelCommand(CLI::App& app) {
+  cmd_ = add_ball_command(
+      app, "zlevel",
+      "Z-level contours with a ball-end mill: exact closed contours (lines, circular and "
+      "elliptic arcs), junctions and bi-contact vectors at each level",
+      common_, gcode_);
+  levels_opt_ = cmd_->add_option("--levels", params_.levels,
+                                 "Tool-tip heights of the contours (mm), comma-separated: "
+                                 "10,20.5; give these or --step-down")
+                    ->delimiter(',');
+  step_opt_ = cmd_->add_option(
+      "--step-down", params_.step_down,
+      "Distance between levels (mm), from the part's top down while above its lowest point; "
+      "give this or --levels");
+  cmd_->add_option("--tolerance", params_.tolerance,
+                   "Chordal tolerance of the arcs' polylines (mm); they never cut into the region")
+      ->capture_default_str();
+}
+
+void ZLevelCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
+  jobs::JobSpec j = job_from(common_, jobs::Operation::kZLevel);
+  j.zlevel = params_;
+  // Exactly one of --levels and --step-down; checked here so that the job is recorded with
+  // status invalid_parameter, like the same job in a batch file.
+  const std::string e = jobs::check_zlevel_choice(levels_opt_->count() > 0, step_opt_->count() > 0,
+                                                  params_, "--levels", "--step-down");
+  if (!e.empty() && j.error.empty()) {
+    j.error = e;
+    j.error_status = "invalid_parameter";
+  }
+  add_mesh_job(common_, gcode_, std::move(j), validate(params_), batch, quiet);
+}
+
+PencilCommand::PencilCommand(CLI::App& app) {
+  cmd_ = add_ball_command(
+      app, "pencil",
+      "Pencil-cut clean-up of concave creases with a ball-end mill: one path along each crease "
+      "where the ball touches two surfaces at once",
+      common_, gcode_);
+  CLI::App* c = cmd_;
+  c->add_option("--interval", params_.interval,
+                "Distance between the drive planes that find the creases, both families (mm)")
+      ->capture_default_str();
+  c->add_option("--step-down", params_.step_down,
+                "Distance between the z-levels that find near-vertical creases (mm), 0 = none")
+      ->capture_default_str();
+  c->add_option("--min-angle", params_.min_angle_deg,
+                "Smallest bi-contact angle of a crease (degrees, between 0 and 180)")
+      ->capture_default_str();
+  c->add_option("--tolerance", params_.tolerance,
+                "Chord error bound of the traced paths and the gouge check (mm)")
+      ->capture_default_str();
+  c->add_option("--merge-distance", params_.merge_distance,
+                "Join pieces whose ends are closer than this (mm), 0 = twice the interval")
+      ->capture_default_str();
+  c->add_option("--min-length", params_.min_length, "Drop pieces shorter than this (mm)")
+      ->capture_default_str();
+  c->add_option("--margin", params_.margin, "Grow the part's xy box by this on every side (mm)")
+      ->capture_default_str();
+  c->add_option("--floor-z", floor_z_,
+                "Height where the tool touches nothing (mm); default: the part's lowest z");
+}
+
+void PencilCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
+  jobs::JobSpec j = job_from(common_, jobs::Operation::kPencil);
+  j.pencil = params_;
+  j.pencil.floor_z = floor_z_;
+  const std::string e = validate(j.pencil);
+  add_mesh_job(common_, gcode_, std::move(j), e, batch, quiet);
+}
+
+}  // namespace ncpath::cli

@@ -1,0 +1,51 @@
+#pragma once
+// The zlevel and pencil commands of the ncpath CLI: their options (defaults from
+// ZLevelOpParams and PencilParams) and the job each builds, the same JobSpec a batch file
+// with operation "zlevel" or "pencil" gives.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <vector>
+
+#include "batch/cli/cli_options.hpp"
+#include "batch/jobs/job_spec.hpp"
+
+namespace ncpath::cli {
+
+// ncpath zlevel --mesh M --tool ball:D (--levels z1,z2,... | --step-down S) [--tolerance T]
+class ZLevelCommand {
+ public:
+  explicit ZLevelCommand(CLI::App& app);
+  ZLevelCommand(const ZLevelCommand&) = delete;  // CLI11 holds pointers to the members
+  ZLevelCommand& operator=(const ZLevelCommand&) = delete;
+  bool parsed() const { return cmd_->parsed(); }
+  // Adds the job (with its error, if any) to the batch.
+  void add_job(jobs::BatchSpec& batch, bool& quiet) const;
+
+ private:
+  CLI::App* cmd_;
+  CLI::Option *levels_opt_, *step_opt_;
+  Common common_;
+  GcodeCli gcode_;
+  ZLevelOpParams params_;
+};
+
+// ncpath pencil --mesh M --tool ball:D [--interval --step-down --min-angle --tolerance
+// --merge-distance --min-length --margin --floor-z]
+class PencilCommand {
+ public:
+  explicit PencilCommand(CLI::App& app);
+  PencilCommand(const PencilCommand&) = delete;
+  PencilCommand& operator=(const PencilCommand&) = delete;
+  bool parsed() const { return cmd_->parsed(); }
+  void add_job(jobs::BatchSpec& batch, bool& quiet) const;
+
+ private:
+  CLI::App* cmd_;
+  Common common_;
+  GcodeCli gcode_;
+  PencilParams params_;
+  std::optional<double> floor_z_;
+};
+
+}  // namespace ncpath::cli

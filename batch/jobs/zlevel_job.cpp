@@ -1,0 +1,183 @@
+#include "batch/jobs/zlevel_job.hpp"
+
+#include <cassert>
+#include <span>
+#include <string>
+
+#include "engine/zlevel.hpp"
+#include "kernels/scan/envelope.hpp"
+#include "kernels/scan/zlevel.hpp"
+
+namespace ncpath::jobs {
+
+namespace {
+
+std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+
+// The codes written to zlevel/segment_kind and zlevel/junction_kind are the kernels' own
+// (ContourSegKind, JunctionKind); the enum texts below list them.
+static_assert(static_cast<int>(ContourSegKind::kLine) == 0 &&
+              static_cast<int>(ContourSegKind::kCircleArc) == 1 &&
+              static_cast<int>(ContourSegKind::kEllipseArc) == 2);
+static_assert(static_cast<int>(JunctionKind::kConvex) == 0 &&
+              static_cast<int>(JunctionKind::kSharpConcave) == 1 &&
+              static_cast<int>(JunctionKind::kTangent) == 2);
+
+constexpr const char* kSegmentKindEnum = "0=line,1=circular_arc,2=elliptic_arc";
+constexpr const char* kJunctionKindEnum = "0=convex,1=sharp_concave,2=tangent";
+constexpr const char* kElementText =
+    "mesh element: kind (0 facet, 1 edge, 2 vertex), then indices a, b: facet index, -1; "
+    "edge's two vertex indices; vertex index, -1";
+
+// The exact contours of the whole job, structure-of-arrays in cutting order (rows of 3 or 7
+// values flattened), as they go to HDF5.
+struct ZLevelRecords {
+  std::vector<std::int64_t> seg_path, seg_element;
+  std::vector<std::uint8_t> seg_kind, seg_shadow;
+  std::vector<double> seg_start, seg_end, seg_geometry;
+  std::vector<std::int64_t> jun_path, jun_element1, jun_element2;
+  std::vector<std::uint8_t> jun_kind;
+  std::vector<double> jun_position, jun_b1, jun_b2, jun_angle;
+  std::vector<double> contour_level;
+  std::vector<std::uint8_t> contour_hole;
+
+  static void push(std::vector<double>& to, const std::array<double, 3>& v) {
+    to.insert(to.end(), v.begin(), v.end());
+  }
+  static void push(std::vector<std::int64_t>& to, const ScanElementRef& e) {
+    to.insert(to.end(), {e.kind, e.a, e.b});
+  }
+  void append(const ZLevelChunk& ch) {
+    for (const ZLevelSegmentRecord& s : ch.segments) {
+      seg_path.push_back(s.path);
+      seg_kind.push_back(s.kind);
+      seg_shadow.push_back(s.shadow);
+      push(seg_element, s.element);
+      push(seg_start, s.start);
+      push(seg_end, s.end);
+      seg_geometry.insert(seg_geometry.end(), s.geometry.begin(), s.geometry.end());
+    }
+    for (const ZLevelJunctionRecord& j : ch.junctions) {
+      jun_path.push_back(j.path);
+      jun_kind.push_back(j.kind);
+      push(jun_position, j.position);
+      push(jun_b1, j.b1);
+      push(jun_b2, j.b2);
+      push(jun_element1, j.element1);
+      push(jun_element2, j.element2);
+      jun_angle.push_back(j.angle);
+    }
+    contour_level.insert(contour_level.end(), ch.contour_level.begin(), ch.contour_level.end());
+    contour_hole.insert(contour_hole.end(), ch.contour_hole.begin(), ch.contour_hole.end());
+  }
+};
+
+template <class T>
+std::span<const T> all(const std::vector<T>& v) {
+  return std::span<const T>(v);
+}
+
+void write_records(const ZLevelRecords& r, out::ClJob& cl) {
+  const std::string g = "zlevel";
+  cl.write_array(g, "segment_path", all(r.seg_path), 0, "",
+                 "cut path (contour) of segment i: its index among the job's cut paths "
+                 "(path_kind 0)");
+  cl.write_array(g, "segment_kind", all(r.seg_kind), 0, "", kSegmentKindEnum);
+  cl.write_array(g, "segment_shadow", all(r.seg_shadow), 0, "",
+                 "1: the element lies above the level there (the ball passes under it: a wall or "
+                 "an overhang; the contact is on the vertical below it), else 0");
+  cl.write_array(g, "segment_element", all(r.seg_element), 3, "", kElementText);
+  cl.write_array(g, "segment_start", all(r.seg_start), 3, "mm",
+                 "tool tip x, y, z where the segment starts, in cutting order (z: the level)");
+  cl.write_array(g, "segment_end", all(r.seg_end), 3, "mm",
+                 "tool tip x, y, z where the segment ends, in cutting order");
+  cl.write_array(g, "segment_geometry", all(r.seg_geometry), 7, "",
+                 "arcs (kinds 1, 2): centre x, centre y (mm), r1, r2 (mm), angle of the axis from "
+                 "+x, t0, t1 (rad): p(t) = centre + r1 cos t axis + r2 sin t perp(axis), t from "
+                 "t0 to t1 (t1 > t0, counter-clockwise); lines: zeros");
+  cl.write_array(g, "junction_path", all(r.jun_path), 0, "",
+                 "cut path (contour) of junction i: its index among the job's cut paths");
+  cl.write_array(g, "junction_kind", all(r.jun_kind), 0, "", kJunctionKindEnum);
+  cl.write_array(g, "junction_position", all(r.jun_position), 3, "mm",
+                 "tool tip x, y, z at the junction (the start of a segment)");
+  cl.write_array(g, "junction_b1", all(r.jun_b1), 3, "",
+                 "unit vector from the contact on the element before the junction (in cutting "
+                 "order) to the ball centre");
+  cl.write_array(g, "junction_b2", all(r.jun_b2), 3, "",
+                 "unit vector from the contact on the element after the junction (in cutting "
+                 "order) to the ball centre");
+  cl.write_array(g, "junction_element1", all(r.jun_element1), 3, "",
+                 std::string("element before the junction; ") + kElementText);
+  cl.write_array(g, "junction_element2", all(r.jun_element2), 3, "",
+                 std::string("element after the junction; ") + kElementText);
+  cl.write_array(g, "junction_angle", all(r.jun_angle), 0, "rad",
+                 "angle between junction_b1 and junction_b2");
+  cl.write_array(g, "contour_level", all(r.contour_level), 0, "mm",
+                 "tool-tip z of contour k (the k-th cut path)");
+  cl.write_array(g, "contour_hole", all(r.contour_hole), 0, "",
+                 "1: contour k is a hole (clockwise, the region outside it), 0: an outer boundary "
+                 "(counter-clockwise)");
+}
+
+void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& stats) {
+  const out::StatValue list[] = {
+      {"offset_facets", i64(st.facets), ""},
+      {"offset_edges", i64(st.edges), ""},
+      {"offset_vertices", i64(st.vertices), ""},
+      {"top_z", st.top_z, "mm"},
+      {"bottom_z", st.bottom_z, "mm"},
+      {"levels", i64(st.levels), ""},
+      {"contours", i64(st.contours), ""},
+      {"holes", i64(st.holes), ""},
+      {"segments", i64(st.segments), ""},
+      {"junctions", i64(st.junctions), ""},
+      {"junctions_sharp_concave", i64(st.sharp_concave), ""},
+      {"junctions_convex", i64(st.convex), ""},
+      {"junctions_tangent", i64(st.tangent), ""},
+      {"candidates", i64(st.candidates), ""},
+      {"open_chains", i64(st.open_chains), ""},
+      {"cut_points", i64(st.points), ""},
+      {"elements_s", st.elements_s, "s"},
+  };
+  stats.insert(stats.end(), std::begin(list), std::end(list));
+}
+
+}  // namespace
+
+ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
+                                out::GcodeWriter* gcode, RunControl& control,
+                                std::vector<out::StatValue>& stats) {
+  ZLevelJobSummary summary;
+  ZLevelRecords records;
+  [[maybe_unused]] std::int64_t cut_paths = 0;  // cut paths before the chunk
+  auto sink = [&](const ZLevelChunk& ch) {
+    const ClChunk& c = ch.cl;
+    cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+    if (gcode) gcode->append(c);
+    summary.points += c.point_count();
+#ifndef NDEBUG
+    // The engine numbers the records' paths among the cut paths, one contour per cut path.
+    std::int64_t cuts = 0;
+    for (std::uint8_t k : c.path_kinds) cuts += k == static_cast<std::uint8_t>(PathKind::kCut);
+    assert(static_cast<std::size_t>(cuts) == ch.contour_level.size());
+    for (const ZLevelSegmentRecord& s : ch.segments)
+      assert(s.path >= cut_paths && s.path < cut_paths + cuts);
+    cut_paths += cuts;
+#endif
+    records.append(ch);
+  };
+  const ZLevelOpStats st = run_zlevel(mesh, job.tool, job.zlevel, sink, control);
+  summary.compute_s = st.compute_s;
+
+  Stopwatch write_clock;
+  write_records(records, cl);
+  const double write_s = st.sink_s + write_clock.seconds();
+
+  push_zlevel_stats(st, stats);
+  stats.push_back({"compute_s", st.compute_s, "s"});
+  stats.push_back({"write_s", write_s, "s"});
+  stats.push_back({"points", i64(summary.points), ""});
+  return summary;
+}
+
+}  // namespace ncpath::jobs

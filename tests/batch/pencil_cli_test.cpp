@@ -1,0 +1,157 @@
+// The pencil command and the pencil job end to end (issue 6): a ball in a V-groove z = |x|
+// (bi-contact angle 90 degrees) gives one path along the groove's floor at the analytic height
+// R (sqrt 2 - 1) and pencil points with the flanks' normals; with a threshold above 90 degrees
+// it gives none; every statistic with its unit, G-code.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+#include "tests/batch/cli_run.hpp"
+#include "tests/batch/mesh_op_cli_support.hpp"
+
+namespace ncpath {
+namespace {
+
+namespace h5 = out::test;
+using test::CmdResult;
+using test::ncpath;
+using test::slurp;
+using namespace mesh_op_cli;
+
+constexpr double kR = 2;  // ball:4; the groove (scan_cli::groove): |x| <= 10, y in [0, 20]
+
+TEST(PencilCli, AVGrooveGivesOnePathAlongItsFloor) {
+  const auto dir = scan_cli::fixture_dir("pencil_groove");
+  scan_cli::write_off(dir / "groove.off", scan_cli::groove(false));
+  // No z-levels: the drive planes alone find the crease (z-levels would add the groove's
+  // ends, where the flanks meet the end edges' capsules).
+  const CmdResult r = ncpath("pencil --mesh " + (dir / "groove.off").string() +
+                             " --tool ball:4 --interval 0.5 --step-down 0 --quiet --out " +
+                             (dir / "g.h5").string() + " --gcode " + (dir / "g.ngc").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "g.h5");
+  h5::Id job(H5Gopen2(f, "/jobs/pencil", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "operation"), "pencil");
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
+  EXPECT_NE(h5::attr_str(job, "params").find("\"step_down\":0.0"), std::string::npos);
+
+  // One cut path at x = 0, tip z = R (sqrt 2 - 1), along the whole groove.
+  const double tip = kR * (std::sqrt(2.0) - 1);
+  const ClOut cl = read_cl(f, "pencil");
+  ASSERT_EQ(cl.kind.size(), 1u);
+  EXPECT_EQ(cl.kind[0], 0);
+  const std::size_t n = cl.pts.size() / 3;
+  ASSERT_GE(n, 2u);
+  double y_min = INFINITY, y_max = -INFINITY;
+  const bool towards_y = cl.point(n - 1)[1] > cl.point(0)[1];
+  for (std::size_t i = 0; i < n; ++i) {
+    const Row q = cl.point(i);
+    EXPECT_NEAR(q[0], 0, 1e-9) << i;
+    EXPECT_NEAR(q[2], tip, 1e-9) << i;
+    y_min = std::min(y_min, q[1]);
+    y_max = std::max(y_max, q[1]);
+    if (i > 0) {
+      EXPECT_EQ(q[1] > cl.point(i - 1)[1], towards_y) << i;  // monotone along y
+    }
+  }
+  EXPECT_NEAR(y_min, 0, 1e-9);
+  EXPECT_NEAR(y_max, 20, 1e-9);
+
+  // Pencil points: one per x line (y = 0, 0.5, ..., 20) at the floor, the flanks' normals
+  // (1, 0, 1) / sqrt 2 and (-1, 0, 1) / sqrt 2 (in the order the line met them), 90 degrees.
+  const PencilOut p = read_pencil(f, "pencil");
+  ASSERT_EQ(p.angle.size(), 41u);
+  const double h = 1 / std::sqrt(2.0);
+  std::vector<bool> seen(41, false);
+  for (std::size_t i = 0; i < p.angle.size(); ++i) {
+    SCOPED_TRACE("point " + std::to_string(i));
+    const Row pos = row(p.position, i), b1 = row(p.b1, i), b2 = row(p.b2, i);
+    EXPECT_NEAR(pos[0], 0, 1e-9);
+    EXPECT_NEAR(pos[2], tip, 1e-9);
+    const double k = pos[1] / 0.5;
+    ASSERT_NEAR(k, std::round(k), 1e-9);
+    ASSERT_TRUE(k >= 0 && k <= 40);
+    EXPECT_FALSE(seen[std::size_t(std::lround(k))]);
+    seen[std::size_t(std::lround(k))] = true;
+    EXPECT_NEAR(p.angle[i], M_PI / 2, 1e-9);
+    EXPECT_NEAR(std::abs(b1[0]), h, 1e-9);
+    EXPECT_NEAR(b2[0], -b1[0], 1e-9);
+    for (const Row& b : {b1, b2}) {
+      EXPECT_NEAR(b[1], 0, 1e-9);
+      EXPECT_NEAR(b[2], h, 1e-9);
+    }
+    EXPECT_EQ(p.family[i], 0);  // x lines: the y lines run along the crease and never cross it
+    EXPECT_EQ(p.kept[i], 1);
+  }
+  for (const auto& [name, cols, unit] :
+       {std::tuple{"point_position", 3, "mm"}, std::tuple{"point_b1", 3, ""},
+        std::tuple{"point_b2", 3, ""}, std::tuple{"point_angle", 0, "rad"},
+        std::tuple{"point_family", 0, ""}, std::tuple{"point_kept", 0, ""}}) {
+    std::vector<hsize_t> shape{41};
+    if (cols) shape.push_back(hsize_t(cols));
+    expect_dataset(f, std::string("/jobs/pencil/pencil/") + name, shape, unit);
+  }
+
+  // Statistics: x lines y = 0 ... 20 and y lines x = -10 ... 10, every 0.5.
+  const scan_cli::Stats st{f, "pencil"};
+  EXPECT_EQ(st["planes"], 82);
+  EXPECT_EQ(st["levels"], 0);
+  EXPECT_EQ(st["candidates"], 41);
+  EXPECT_EQ(st["pencil_points"], 41);
+  EXPECT_EQ(st["kept_points"], 41);
+  EXPECT_EQ(st["paths"], 1);
+  EXPECT_GE(st["chains"], 1);
+  // (lifted_points may count raises at the rounding level: the z check above bounds them.)
+  EXPECT_LE(st["lifted_points"], double(n));
+  EXPECT_NEAR(st["traced_length"], 20, 1e-6);
+  EXPECT_EQ(st["air_length"], 0);
+  EXPECT_EQ(st["points"], double(n));
+  for (const char* s : {"traced_length", "air_length"}) EXPECT_EQ(st.unit(s), "mm") << s;
+  for (const char* s : {"elements_s", "scan_s", "zlevel_s", "link_s", "refine_s", "check_s",
+                        "compute_s", "write_s", "read_s"})
+    EXPECT_EQ(st.unit(s), "s") << s;
+  for (const char* s : {"planes", "levels", "candidates", "pencil_points", "kept_points", "chains",
+                        "refined_points", "lifted_points", "paths", "points"})
+    EXPECT_EQ(st.unit(s), "") << s;
+  EXPECT_GE(st["compute_s"], st["scan_s"]);
+
+  // G-code: rapids 5 mm above the groove's top (z = 10).
+  const std::string g = slurp(dir / "g.ngc");
+  EXPECT_NE(g.find("G0 Z15.0000"), std::string::npos);
+  EXPECT_NE(g.find("M2"), std::string::npos);
+}
+
+TEST(PencilCli, AThresholdAboveTheGroovesAngleGivesNoPath) {
+  const auto dir = scan_cli::fixture_dir("pencil_threshold");
+  scan_cli::write_off(dir / "groove.off", scan_cli::groove(false));
+  std::ofstream(dir / "jobs.toml") << R"(
+output = "out.h5"
+[[job]]
+name = "steep"
+operation = "pencil"
+input = "groove.off"
+tool = "ball:4"
+params = { interval = 0.5, step_down = 0, min_angle = 100 }
+)";
+  const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "out.h5");
+  h5::Id job(H5Gopen2(f, "/jobs/steep", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
+  const ClOut cl = read_cl(f, "steep");
+  EXPECT_TRUE(cl.pts.empty());
+  EXPECT_TRUE(cl.kind.empty());
+  const PencilOut p = read_pencil(f, "steep");
+  EXPECT_TRUE(p.angle.empty());
+  expect_dataset(f, "/jobs/steep/pencil/point_position", {0, 3}, "mm");
+  const scan_cli::Stats st{f, "steep"};
+  EXPECT_EQ(st["candidates"], 41);  // the same junctions, all below the threshold
+  EXPECT_EQ(st["pencil_points"], 0);
+  EXPECT_EQ(st["paths"], 0);
+  EXPECT_EQ(st["points"], 0);
+  EXPECT_EQ(st["traced_length"], 0);
+}
+
+}  // namespace
+}  // namespace ncpath
