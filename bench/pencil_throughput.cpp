@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   std::printf("%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %7s %6s %9s %8s\n", "mesh", "facets",
               "interval", "total s", "elem s", "scan s", "zlev s", "link s", "refine s", "check s",
               "pencil", "kept", "paths", "length mm", "RSS MB");
+  std::printf("%-22s refined / lifted points follow each row\n", "");
   for (const std::string& path : meshes) {
     io::MeshReadResult in = io::read_mesh(path);
     MeshTransform tr;
@@ -67,6 +68,9 @@ int main(int argc, char** argv) {
                   total, s.elements_s, s.scan_s, s.zlevel_s, s.link_s, s.refine_s, s.check_s,
                   (unsigned long long)s.pencil_points, (unsigned long long)s.kept_points,
                   (unsigned long long)s.paths, s.traced_length, peak_rss_bytes() / 1048576.0);
+      std::printf("%-22s refined %llu, lifted %llu, candidates %llu, chains %llu\n", "",
+                  (unsigned long long)s.refined_points, (unsigned long long)s.lifted_points,
+                  (unsigned long long)s.candidates, (unsigned long long)s.chains);
       std::fflush(stdout);
     }
   }

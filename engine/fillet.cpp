@@ -112,7 +112,7 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
       const double beta = bicontact_angle(b1, b2);
       const Vec3 t = crease_tangent(b1, b2);
       if (t.isZero()) continue;
-      Vec3 prev;
+      Vec3 prev = Vec3::Zero();
       double len = 0;
       bool have = false;
       for (int j = 0; j <= 16; ++j) {

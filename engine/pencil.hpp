@@ -16,8 +16,10 @@
 //      crease point on an intermediate drive plane (the local intersection of the two offset
 //      elements, found by the exact envelope of that plane near the chord), recursively;
 //   4. safety: every chord is checked against the point drop-cutter (Embree, exact in
-//      double) at samples no more than `tolerance`-derived spacing apart and lifted where it
-//      would dip below the CL surface, so the path never gouges;
+//      double) at samples a tenth of the interval apart; a chord dipping by more than
+//      max(10 tolerance, 0.05 mm) has left the crease (two creases the refinement could not
+//      bridge) and the piece is split there; smaller dips are lifted, so the path never
+//      gouges;
 //   5. pieces closer than `merge_distance` end to end are joined, pieces shorter than
 //      `min_length` dropped, and the rest ordered and oriented greedily to shorten the air
 //      moves between them.
@@ -68,6 +70,7 @@ struct PencilStats {
   std::uint64_t chains = 0;         // linked chains before merging
   std::uint64_t refined_points = 0;  // exact crease points added by refinement
   std::uint64_t lifted_points = 0;   // path points raised by the drop-cutter check
+  std::uint64_t split_chords = 0;    // chords that left the crease (pieces split there)
   std::uint64_t paths = 0;           // pieces cut
   double traced_length = 0;          // mm, cut length of the pieces
   double air_length = 0;             // mm, straight distance between consecutive pieces

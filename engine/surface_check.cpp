@@ -6,7 +6,9 @@
 namespace ncpath {
 
 double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
-  double d = INFINITY;
+  // On or above at q itself: no gouge whatever the neighbours say (one query, the common case).
+  double d = std::max(floor_z, index.query(q.x(), q.y()).tip_z) - q.z();
+  if (d <= 0) return d;
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy) {
       const double z = index.query(q.x() + 1e-6 * dx, q.y() + 1e-6 * dy).tip_z;
@@ -24,7 +26,7 @@ std::size_t lift_above_surface(const DropIndex& index, double floor_z, double sp
       lift[i] = std::max(0.0, surface_deficit(index, floor_z, pts[i]));
     for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
       const Vec3 a = pts[i], b = pts[i + 1];
-      const int n = std::max(16, int(std::ceil((b - a).norm() / spacing)));
+      const int n = std::max(4, int(std::ceil((b - a).norm() / spacing)));
       double deficit = 0;
       for (int j = 1; j < n; ++j)
         deficit = std::max(deficit, surface_deficit(index, floor_z, a + (b - a) * (double(j) / n)));
