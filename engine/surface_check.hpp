@@ -19,9 +19,10 @@ namespace ncpath {
 double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
 
 // Raises points so that the polyline lies on or above the CL surface at its points and at
-// samples along every chord no farther apart than `spacing` (at least 4 per chord): a
-// chord whose samples dip is lifted at both ends by the largest dip; repeated (a lift can
-// expose a neighbouring chord) up to three times. Returns the number of points raised.
+// samples along every chord no farther apart than `spacing` (at least its middle): a chord
+// whose samples dip is lifted at both ends by the largest dip; the chords next to a raised
+// point are checked again (a lift can expose a neighbour), up to three passes. Returns the
+// number of points raised.
 std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
                                std::vector<Vec3>& points);
 
