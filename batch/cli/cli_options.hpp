@@ -1,7 +1,7 @@
 #pragma once
 // Options and helpers the mesh commands of the ncpath CLI share (raster, scan, zlevel, pencil,
-// drop): the mesh, tool, output and transform options, the G-code options, and turning them
-// into the JobSpec a batch file would give.
+// fillet, drop): the mesh, tool, output and transform options, the G-code options, and turning
+// them into the JobSpec a batch file would give.
 #include <CLI/CLI.hpp>
 
 #include <optional>
@@ -37,7 +37,7 @@ void apply_gcode(const GcodeCli& g, jobs::JobSpec& j);
 // The job of a mesh command with the common options; a bad tool or transform is its error.
 jobs::JobSpec job_from(const Common& c, jobs::Operation op);
 
-// Adds the job of a mesh command (raster, scan, zlevel, pencil, drop) to the batch:
+// Adds the job of a mesh command (raster, scan, zlevel, pencil, fillet, drop) to the batch:
 // `param_error` (the first problem of its parameters, "" when none, starting with the key's
 // name as in a batch file: "min_angle must be ...") is reported as the option ("--min-angle
 // must be ...") unless the tool or transform is bad.

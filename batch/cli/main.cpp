@@ -1,6 +1,6 @@
-// ncpath command line: raster, scan, zlevel, pencil, drop, offset, pocket, pocket3d and run (a
-// TOML batch). Every command builds the same JobSpec a batch file would, so a job behaves the
-// same whichever way it was given.
+// ncpath command line: raster, scan, zlevel, pencil, fillet, drop, offset, pocket, pocket3d and
+// run (a TOML batch). Every command builds the same JobSpec a batch file would, so a job behaves
+// the same whichever way it was given.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -212,6 +212,7 @@ int main(int argc, char** argv) {
 
   ZLevelCommand zlevel(app);
   PencilCommand pencil(app);
+  FilletCommand fillet(app);
 
   Common dc;
   std::string points;
@@ -311,6 +312,8 @@ int main(int argc, char** argv) {
     zlevel.add_job(batch, quiet);
   } else if (pencil.parsed()) {
     pencil.add_job(batch, quiet);
+  } else if (fillet.parsed()) {
+    fillet.add_job(batch, quiet);
   } else if (offset->parsed()) {
     add_profile_job(
         oc, jobs::Operation::kOffset,

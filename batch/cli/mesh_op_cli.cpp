@@ -16,6 +16,32 @@ CLI::App* add_ball_command(CLI::App& app, const char* name, const char* descript
   return cmd;
 }
 
+// The options of a pencil run: the pencil command's, and the fillet command's for the pencil
+// run of its reference ball.
+void add_pencil_options(CLI::App* c, PencilParams& params, std::optional<double>& floor_z) {
+  c->add_option("--interval", params.interval,
+                "Distance between the drive planes that find the creases, both families (mm)")
+      ->capture_default_str();
+  c->add_option("--step-down", params.step_down,
+                "Distance between the z-levels that find near-vertical creases (mm), 0 = none")
+      ->capture_default_str();
+  c->add_option("--min-angle", params.min_angle_deg,
+                "Smallest bi-contact angle of a crease (degrees, between 0 and 180)")
+      ->capture_default_str();
+  c->add_option("--tolerance", params.tolerance,
+                "Chord error bound of the traced paths and the gouge check (mm)")
+      ->capture_default_str();
+  c->add_option("--merge-distance", params.merge_distance,
+                "Join pieces whose ends are closer than this (mm), 0 = twice the interval")
+      ->capture_default_str();
+  c->add_option("--min-length", params.min_length, "Drop pieces shorter than this (mm)")
+      ->capture_default_str();
+  c->add_option("--margin", params.margin, "Grow the part's xy box by this on every side (mm)")
+      ->capture_default_str();
+  c->add_option("--floor-z", floor_z,
+                "Height where the tool touches nothing (mm); default: the part's lowest z");
+}
+
 }  // namespace
 
 ZLevelCommand::ZLevelCommand(CLI::App& app) {
@@ -57,28 +83,7 @@ PencilCommand::PencilCommand(CLI::App& app) {
       "Pencil-cut clean-up of concave creases with a ball-end mill: one path along each crease "
       "where the ball touches two surfaces at once",
       common_, gcode_);
-  CLI::App* c = cmd_;
-  c->add_option("--interval", params_.interval,
-                "Distance between the drive planes that find the creases, both families (mm)")
-      ->capture_default_str();
-  c->add_option("--step-down", params_.step_down,
-                "Distance between the z-levels that find near-vertical creases (mm), 0 = none")
-      ->capture_default_str();
-  c->add_option("--min-angle", params_.min_angle_deg,
-                "Smallest bi-contact angle of a crease (degrees, between 0 and 180)")
-      ->capture_default_str();
-  c->add_option("--tolerance", params_.tolerance,
-                "Chord error bound of the traced paths and the gouge check (mm)")
-      ->capture_default_str();
-  c->add_option("--merge-distance", params_.merge_distance,
-                "Join pieces whose ends are closer than this (mm), 0 = twice the interval")
-      ->capture_default_str();
-  c->add_option("--min-length", params_.min_length, "Drop pieces shorter than this (mm)")
-      ->capture_default_str();
-  c->add_option("--margin", params_.margin, "Grow the part's xy box by this on every side (mm)")
-      ->capture_default_str();
-  c->add_option("--floor-z", floor_z_,
-                "Height where the tool touches nothing (mm); default: the part's lowest z");
+  add_pencil_options(cmd_, params_, floor_z_);
 }
 
 void PencilCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
@@ -87,6 +92,50 @@ void PencilCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
   j.pencil.floor_z = floor_z_;
   const std::string e = validate(j.pencil);
   add_mesh_job(common_, gcode_, std::move(j), e, batch, quiet);
+}
+
+FilletCommand::FilletCommand(CLI::App& app) {
+  cmd_ = add_ball_command(
+      app, "fillet",
+      "Fillet-cut clean-up with a ball-end mill smaller than the finishing (reference) ball: "
+      "passes along the reference ball's pencil paths across the fillets it could not reach",
+      common_, gcode_);
+  cmd_->get_option("--tool")->description(
+      "Clean-up ball-end mill ball:d (mm), smaller than --reference; flat and "
+      "bull are refused");
+  cmd_->add_option("--reference", reference_,
+                   "The finishing ball whose creases are cleaned up: ball:D (mm), larger than "
+                   "--tool")
+      ->required();
+  cmd_->add_option("--stepover", params_.stepover,
+                   "Distance between neighbouring passes (mm), 0 = from --scallop")
+      ->capture_default_str();
+  scallop_opt_ = cmd_->add_option("--scallop", params_.scallop,
+                                  "Cusp height left between passes (mm), when --stepover is 0")
+                     ->capture_default_str();
+  cmd_->add_option("--max-passes", params_.max_passes, "Most passes per pencil path")
+      ->capture_default_str();
+  add_pencil_options(cmd_, params_.pencil, floor_z_);
+}
+
+void FilletCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
+  jobs::JobSpec j = job_from(common_, jobs::Operation::kFillet);
+  j.fillet = params_;
+  j.fillet.pencil.floor_z = floor_z_;
+  j.fillet_reference = reference_;
+  // The reference ball, then the spacing options; checked here so that the job is recorded
+  // with status invalid_parameter, like the same job in a batch file.
+  std::string e = jobs::parse_fillet_reference(reference_, j.tool, j.fillet);
+  if (!e.empty())
+    e = "--reference " + e;
+  else
+    e = jobs::check_fillet_spacing(scallop_opt_->count() > 0, j.fillet, "--stepover", "--scallop");
+  if (!e.empty() && j.error.empty()) {
+    j.error = e;
+    j.error_status = "invalid_parameter";
+  }
+  const std::string v = jobs::validate_fillet(j.fillet);
+  add_mesh_job(common_, gcode_, std::move(j), v, batch, quiet);
 }
 
 }  // namespace ncpath::cli

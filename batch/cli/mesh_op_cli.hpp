@@ -1,10 +1,11 @@
 #pragma once
-// The zlevel and pencil commands of the ncpath CLI: their options (defaults from
-// ZLevelOpParams and PencilParams) and the job each builds, the same JobSpec a batch file
-// with operation "zlevel" or "pencil" gives.
+// The zlevel, pencil and fillet commands of the ncpath CLI: their options (defaults from
+// ZLevelOpParams, PencilParams and FilletParams) and the job each builds, the same JobSpec a
+// batch file with operation "zlevel", "pencil" or "fillet" gives.
 #include <CLI/CLI.hpp>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "batch/cli/cli_options.hpp"
@@ -45,6 +46,26 @@ class PencilCommand {
   Common common_;
   GcodeCli gcode_;
   PencilParams params_;
+  std::optional<double> floor_z_;
+};
+
+// ncpath fillet --mesh M --tool ball:d --reference ball:D [--stepover S | --scallop H]
+// [--max-passes N] [the pencil options, for the reference ball's pencil run]
+class FilletCommand {
+ public:
+  explicit FilletCommand(CLI::App& app);
+  FilletCommand(const FilletCommand&) = delete;
+  FilletCommand& operator=(const FilletCommand&) = delete;
+  bool parsed() const { return cmd_->parsed(); }
+  void add_job(jobs::BatchSpec& batch, bool& quiet) const;
+
+ private:
+  CLI::App* cmd_;
+  CLI::Option* scallop_opt_;
+  Common common_;
+  GcodeCli gcode_;
+  std::string reference_;
+  FilletParams params_;
   std::optional<double> floor_z_;
 };
 

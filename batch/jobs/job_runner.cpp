@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/jobs/fillet_job.hpp"
 #include "batch/jobs/offset_job.hpp"
 #include "batch/jobs/pencil_job.hpp"
 #include "batch/jobs/pocket3d_job.hpp"
@@ -27,8 +28,8 @@ using out::StatValue;
 
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
-// Reads the mesh, transforms it and runs the raster, scan, zlevel, pencil or drop operation
-// into cl.
+// Reads the mesh, transforms it and runs the raster, scan, zlevel, pencil, fillet or drop
+// operation into cl.
 void run_mesh_job(const JobSpec& job, out::ClJob& cl,
                   const std::function<out::GcodeWriter*(double part_top)>& open_gcode,
                   const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o) {
@@ -64,12 +65,18 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
     o.compute_s = r.compute_s;
     return;
   }
+  if (job.operation == Operation::kFillet) {
+    const FilletJobSummary r = run_fillet_job(job, in.mesh, cl, gcode, control, stats);
+    o.points = r.points;
+    o.compute_s = r.compute_s;
+    return;
+  }
   auto sink = [&](const ClChunk& c) {
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
     if (gcode) gcode->append(c);
   };
-  // Statistics raster and drop both have (scan, zlevel and pencil write their own, see
-  // scan_job.cpp, zlevel_job.cpp, pencil_job.cpp).
+  // Statistics raster and drop both have (scan, zlevel, pencil and fillet write their own,
+  // see scan_job.cpp, zlevel_job.cpp, pencil_job.cpp, fillet_job.cpp).
   auto common = [&](std::uint64_t facets, std::uint64_t degenerate, double index_s,
                     double compute_s, double sink_s) {
     o.compute_s = compute_s;

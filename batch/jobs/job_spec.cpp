@@ -33,6 +33,8 @@ const char* operation_name(Operation op) {
       return "zlevel";
     case Operation::kPencil:
       return "pencil";
+    case Operation::kFillet:
+      return "fillet";
   }
   return "?";
 }
@@ -354,10 +356,12 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     job.operation = Operation::kZLevel;
   else if (op == "pencil")
     job.operation = Operation::kPencil;
+  else if (op == "fillet")
+    job.operation = Operation::kFillet;
   else
     k.fail("operation",
-           "must be \"raster\", \"scan\", \"zlevel\", \"pencil\", \"drop\", \"offset\", "
-           "\"pocket\" or \"pocket3d\", got \"" +
+           "must be \"raster\", \"scan\", \"zlevel\", \"pencil\", \"fillet\", \"drop\", "
+           "\"offset\", \"pocket\" or \"pocket3d\", got \"" +
                op + "\"");
   const bool profile_op = job.operation == Operation::kOffset ||
                           job.operation == Operation::kPocket ||
@@ -404,6 +408,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       parse_zlevel_params(pk, job.zlevel);
     } else if (job.operation == Operation::kPencil) {
       parse_pencil_params(pk, job.pencil);
+    } else if (job.operation == Operation::kFillet) {
+      parse_fillet_params(pk, job.tool, job.fillet, job.fillet_reference);
     } else if (job.operation == Operation::kOffset) {
       parse_offset_params(pk, job);
     } else if (job.operation == Operation::kPocket) {
@@ -423,6 +429,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
       if (std::string e = validate(job.zlevel); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPencil)
       if (std::string e = validate(job.pencil); !e.empty()) pk.fail("", e);
+    if (pk.error.empty() && job.operation == Operation::kFillet)
+      if (std::string e = validate_fillet(job.fillet); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kOffset)
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPocket)
@@ -460,6 +468,10 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     if (job.zlevel.levels.empty() && !(job.zlevel.step_down > 0))
       k.error =
           check_zlevel_choice(false, false, job.zlevel, "'params.levels'", "'params.step_down'");
+  if (job.operation == Operation::kFillet && job.fillet_reference.empty() && k.error.empty())
+    k.fail("params.reference",
+           "is required for a fillet job (the finishing ball, larger than the tool, e.g. "
+           "\"ball:10\")");
   if (job.operation == Operation::kDrop && job.points.empty())
     k.fail("params.points", "is required for a drop job (CSV of x,y lines)");
   k.finish();
@@ -570,6 +582,8 @@ std::string params_json(const JobSpec& job) {
     zlevel_params_json(job.zlevel, j);
   } else if (job.operation == Operation::kPencil) {
     pencil_params_json(job.pencil, j);
+  } else if (job.operation == Operation::kFillet) {
+    fillet_params_json(job.fillet, job.fillet_reference, j);
   } else if (job.operation == Operation::kOffset) {
     j["stepover"] = job.offset.stepover;
     j["stock"] = job.offset.stock;

@@ -9,8 +9,8 @@
 //   threads = 0                  # 0 = all cores
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
-//   operation = "raster"          # "raster", "scan", "zlevel", "pencil", "drop", "offset",
-//                                 # "pocket" or "pocket3d"
+//   operation = "raster"          # "raster", "scan", "zlevel", "pencil", "fillet", "drop",
+//                                 # "offset", "pocket" or "pocket3d"
 //   input     = "../datasets/cache/meshes/bunny00.off"
 //   surface   = "bottom.toml"     # pocket3d only: the bottom surface
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "batch/output/gcode_writer.hpp"
+#include "engine/fillet.hpp"
 #include "engine/pencil.hpp"
 #include "engine/pocket_path.hpp"
 #include "engine/raster.hpp"
@@ -47,7 +48,8 @@ enum class Operation : std::uint8_t {
   kPocket3d,
   kScan,
   kZLevel,
-  kPencil
+  kPencil,
+  kFillet
 };
 
 // The offset operation (pocket offset loops, unlinked; PocketParams for tool paths).
@@ -113,6 +115,10 @@ struct JobSpec {
   ScanParams scan;        // the scan operation (curve-based drive-plane scanning, ball only)
   ZLevelOpParams zlevel;  // the zlevel operation (z-level contours, ball only)
   PencilParams pencil;    // the pencil operation (pencil-cut of concave creases, ball only)
+  // The fillet operation (fillet-cut clean-up after a larger reference ball, ball only):
+  // reference_diameter from `fillet_reference`, the reference ball as written ("ball:10").
+  FilletParams fillet;
+  std::string fillet_reference;
   OffsetParams offset;
   PocketParams pocket;
   Pocket3dJobParams pocket3d;
@@ -141,7 +147,7 @@ BatchSpec parse_batch_file(const std::filesystem::path& path);
 BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& base_dir,
                            const std::string& source_name);
 
-// "raster", "drop", "offset", "pocket", "pocket3d", "scan", "zlevel", "pencil"
+// "raster", "drop", "offset", "pocket", "pocket3d", "scan", "zlevel", "pencil", "fillet"
 const char* operation_name(Operation op);
 
 // "x", "y", "both" -> families; error message to follow the key's name, or "".
@@ -154,6 +160,22 @@ const char* families_name(ScanFamilies families);  // "x", "y", "both"
 // The other parameters are checked by validate(ZLevelOpParams). (In mesh_op_params.cpp.)
 std::string check_zlevel_choice(bool has_levels, bool has_step_down, const ZLevelOpParams& params,
                                 const std::string& levels_key, const std::string& step_key);
+
+// The reference ball of a fillet job, from its spec as written ("ball:10"): sets
+// params.reference_diameter. "" or the problem, to follow the key's name ("must be a ball-end
+// mill ..."): a spec parse_tool refuses, a cutter that is not a ball, or, when the job's tool
+// is a ball, a reference not larger than it. (In mesh_op_params.cpp.)
+std::string parse_fillet_reference(const std::string& text, const Cutter& tool,
+                                   FilletParams& params);
+// The spacing keys of a fillet job: a scallop height given (has_scallop) next to a stepover
+// > 0 would not be used, so it is refused. "" or the problem, naming the keys as spelled by the
+// caller ("'params.stepover'" or "--stepover"). (In mesh_op_params.cpp.)
+std::string check_fillet_spacing(bool has_scallop, const FilletParams& params,
+                                 const std::string& stepover_key, const std::string& scallop_key);
+// validate(FilletParams) with the pencil keys' messages as the other keys' ("interval must be
+// ...", not "pencil: interval must be ..."): a job's keys are one flat table. ""
+// when usable. (In mesh_op_params.cpp.)
+std::string validate_fillet(const FilletParams& params);
 
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);

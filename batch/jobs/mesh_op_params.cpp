@@ -52,6 +52,58 @@ void parse_pencil_params(Keys& k, PencilParams& p) {
   if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
 }
 
+std::string parse_fillet_reference(const std::string& text, const Cutter& tool, FilletParams& p) {
+  Cutter ref;
+  if (std::string e = parse_tool(text, ref); !e.empty()) return "is not a usable ball: " + e;
+  std::ostringstream os;
+  if (ref.type != CutterType::kBall)
+    os << "must be a ball-end mill (ball:D, the finishing ball whose pencil paths are "
+          "followed), got '"
+       << text << "'";
+  else if (tool.type == CutterType::kBall && !(ref.radius > tool.radius))
+    os << "must be a larger ball than the tool (" << 2 * tool.radius << " mm), got '" << text
+       << "' (" << 2 * ref.radius << " mm): the tool cleans up what the reference ball left";
+  else
+    p.reference_diameter = 2 * ref.radius;
+  return os.str();
+}
+
+std::string check_fillet_spacing(bool has_scallop, const FilletParams& p,
+                                 const std::string& stepover_key, const std::string& scallop_key) {
+  if (has_scallop && p.stepover > 0)
+    return scallop_key + " is not used when " + stepover_key +
+           " is given (> 0): give one of them (" + stepover_key + ": mm between passes; " +
+           scallop_key + ": cusp height between passes, mm, with " + stepover_key + " 0)";
+  return "";
+}
+
+std::string validate_fillet(const FilletParams& p) {
+  std::string e = validate(p);
+  const std::string nested = "pencil: ";
+  if (e.rfind(nested, 0) == 0) e.erase(0, nested.size());
+  return e;
+}
+
+void parse_fillet_params(Keys& k, const Cutter& tool, FilletParams& p,
+                         std::string& reference_text) {
+  // Absent: refused by parse_job, which also sees a job without `params`.
+  if (k.string("reference", reference_text))
+    if (std::string e = parse_fillet_reference(reference_text, tool, p); !e.empty())
+      k.fail("reference", e);
+  k.number("stepover", p.stepover);
+  const bool has_scallop = k.number("scallop", p.scallop);
+  double passes;
+  if (k.number("max_passes", passes)) {
+    if (passes >= 1 && passes <= 1e6 && passes == static_cast<std::uint32_t>(passes))
+      p.max_passes = static_cast<std::uint32_t>(passes);
+    else
+      k.fail("max_passes", "must be a whole number >= 1");
+  }
+  parse_pencil_params(k, p.pencil);
+  if (k.error.empty())
+    k.error = check_fillet_spacing(has_scallop, p, "'params.stepover'", "'params.scallop'");
+}
+
 void zlevel_params_json(const ZLevelOpParams& p, nlohmann::ordered_json& j) {
   // The one of levels and step_down that is used; the other null.
   const bool stepped = p.step_down > 0;
@@ -70,6 +122,16 @@ void pencil_params_json(const PencilParams& p, nlohmann::ordered_json& j) {
   j["min_length"] = p.min_length;
   j["margin"] = p.margin;
   j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
+}
+
+void fillet_params_json(const FilletParams& p, const std::string& reference_text,
+                        nlohmann::ordered_json& j) {
+  j["reference"] = reference_text;
+  j["reference_diameter"] = p.reference_diameter;
+  j["stepover"] = p.stepover;
+  j["scallop"] = p.scallop;
+  j["max_passes"] = p.max_passes;
+  pencil_params_json(p.pencil, j);
 }
 
 }  // namespace ncpath::jobs

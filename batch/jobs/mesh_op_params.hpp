@@ -1,10 +1,11 @@
 #pragma once
-// Parameters of the zlevel and pencil operations in batch files: reading the `params` table,
-// and writing them back as the JSON of the job's `params` attribute (defaults included).
+// Parameters of the zlevel, pencil and fillet operations in batch files: reading the `params`
+// table, and writing them back as the JSON of the job's `params` attribute (defaults included).
 // Internal to the batch library (job_spec.cpp); the keys are listed in docs/cli.md.
 #include <nlohmann/json.hpp>
 
 #include "batch/jobs/toml_keys.hpp"
+#include "engine/fillet.hpp"
 #include "engine/pencil.hpp"
 #include "engine/zlevel.hpp"
 
@@ -17,9 +18,14 @@ void parse_zlevel_params(Keys& k, ZLevelOpParams& p);
 // pencil: interval, step_down, min_angle (degrees), tolerance, merge_distance, min_length,
 // margin, floor_z.
 void parse_pencil_params(Keys& k, PencilParams& p);
+// fillet: reference (required, a ball larger than `tool`, the job's own), stepover, scallop,
+// max_passes, and the pencil keys of the reference run. reference_text: as written.
+void parse_fillet_params(Keys& k, const Cutter& tool, FilletParams& p, std::string& reference_text);
 
 // Adds the operation's keys to j.
 void zlevel_params_json(const ZLevelOpParams& p, nlohmann::ordered_json& j);
 void pencil_params_json(const PencilParams& p, nlohmann::ordered_json& j);
+void fillet_params_json(const FilletParams& p, const std::string& reference_text,
+                        nlohmann::ordered_json& j);
 
 }  // namespace ncpath::jobs
