@@ -252,8 +252,11 @@ inline constexpr double kJunctionTangentAngle = 1e-6;
 inline constexpr double kZLevelOnBoundary = 1e-11;
 
 // mm. Contour piece ends closer than this are the same contour vertex when pieces are linked
-// into loops. Covers pieces dropped next to tangent joints, where a piece shorter than
-// sqrt(2 kZLevelOnBoundary R) cannot be told from the curve it touches.
+// into loops (a kept piece shorter than this joins its ends). Covers split points of one
+// vertex computed from different curve pairs and short pieces between nearby joints; pieces
+// that stay within kZLevelOnBoundary of another region's boundary over longer stretches
+// (next to tangent joints on flat edges, at grazing crossings) are classified by the kernel,
+// not by this.
 inline constexpr double kZLevelLink = 1e-5;
 
 // mm. A cell of the z-level pruning grid is interior when it lies this deep inside one region.

@@ -252,10 +252,15 @@ Curve sub_curve(const Curve& c, double s0, double s1) {
   return r;
 }
 
+// A point splitting act[curve] at parameter s. At a crossing of two lines, `other` is the
+// other line's region and `enter` +1 when the curve runs into it past p, -1 when out of it
+// (exact signs: the lines are not parallel); kNone and 0 elsewhere.
 struct Split {
   std::uint32_t curve;
   double s;
   Vec2 p;
+  std::uint32_t other = kNone;
+  std::int8_t enter = 0;
 };
 
 }  // namespace
@@ -448,9 +453,75 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
     act_begin[regions.size()] = std::uint32_t(act.size());
   }
-  st.active_curves = act.size();
   fill_lists(
       grid, act.size(), [&](std::size_t k) { return act[k].box; }, curve_cells);
+
+  // Active curve pairs i < j whose boxes overlap, once each, other than a region's own
+  // curves and the structural pairs.
+  std::vector<std::uint32_t> stamp;
+  auto for_each_pair = [&](auto&& fn) {
+    stamp.assign(act.size(), kNone);
+    for (std::uint32_t i = 0; i < act.size(); ++i) {
+      const Curve& C = act[i];
+      int i0, j0, i1, j1;
+      grid.range(C.box, i0, j0, i1, j1);
+      for (int cj = j0; cj <= j1; ++cj)
+        for (int ci = i0; ci <= i1; ++ci) {
+          const std::size_t cell = std::size_t(cj) * grid.nx + ci;
+          for (std::uint32_t k = curve_cells.start[cell]; k < curve_cells.start[cell + 1]; ++k) {
+            const std::uint32_t j = curve_cells.ids[k];
+            if (j <= i || stamp[j] == i) continue;
+            stamp[j] = i;
+            const Curve& D = act[j];
+            if (C.region == D.region || !boxes_overlap(C.box, D.box)) continue;
+            if (structural_pair(el, regions[C.region], regions[D.region])) continue;
+            fn(i, j);
+          }
+        }
+    }
+  };
+
+  // Coincident curves (the shadows of a wall's stacked edges and vertices lie on the same
+  // lines and circles): where a curve runs along one of a lower element id, the
+  // classification below drops it (the lower id keeps a shared piece; regions on both sides
+  // drop both). Trimmed here instead, so that k coincident curves do not make k^2 pieces;
+  // the lowest stays and still splits the curves that cross there.
+  {
+    struct Cut {
+      std::uint32_t curve;
+      double s0, s1;
+    };
+    std::vector<Cut> cuts;
+    for_each_pair([&](std::uint32_t i, std::uint32_t j) {
+      double d0, d1;  // act is in element order: act[i]'s is the lower id
+      if (coincident_overlap(act[i], act[j], d0, d1)) cuts.push_back({j, d0, d1});
+    });
+    if (!cuts.empty()) {
+      std::sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) {
+        return a.curve != b.curve ? a.curve < b.curve : a.s0 < b.s0;
+      });
+      std::vector<Curve> rest;
+      std::vector<std::uint32_t> rest_begin(regions.size() + 1, 0);
+      std::size_t q = 0;
+      for (std::size_t gi = 0; gi < regions.size(); ++gi) {
+        rest_begin[gi] = std::uint32_t(rest.size());
+        for (std::uint32_t c = act_begin[gi]; c < act_begin[gi + 1]; ++c) {
+          double from = 0;
+          for (; q < cuts.size() && cuts[q].curve == c; ++q) {
+            if (cuts[q].s0 > from) rest.push_back(sub_curve(act[c], from, cuts[q].s0));
+            from = std::max(from, cuts[q].s1);
+          }
+          if (from < act[c].len) rest.push_back(sub_curve(act[c], from, act[c].len));
+        }
+      }
+      rest_begin[regions.size()] = std::uint32_t(rest.size());
+      act.swap(rest);
+      act_begin.swap(rest_begin);
+      fill_lists(
+          grid, act.size(), [&](std::size_t k) { return act[k].box; }, curve_cells);
+    }
+  }
+  st.active_curves = act.size();
 
   auto region_of_element = [&](std::uint32_t id) -> std::uint32_t {
     const auto it =
@@ -490,34 +561,22 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
   }
   {
-    std::vector<std::uint32_t> stamp(act.size(), kNone);
     std::vector<Hit> hits;
-    for (std::uint32_t i = 0; i < act.size(); ++i) {
-      const Curve& C = act[i];
-      int i0, j0, i1, j1;
-      grid.range(C.box, i0, j0, i1, j1);
-      for (int cj = j0; cj <= j1; ++cj)
-        for (int ci = i0; ci <= i1; ++ci) {
-          const std::size_t cell = std::size_t(cj) * grid.nx + ci;
-          for (std::uint32_t k = curve_cells.start[cell]; k < curve_cells.start[cell + 1]; ++k) {
-            const std::uint32_t j = curve_cells.ids[k];
-            if (j <= i || stamp[j] == i) continue;
-            stamp[j] = i;
-            const Curve& D = act[j];
-            if (C.region == D.region || !boxes_overlap(C.box, D.box)) continue;
-            if (structural_pair(el, regions[C.region], regions[D.region])) continue;
-            ++st.pairs;
-            hits.clear();
-            bool coincident;
-            intersect_curves(C, D, lv, hits, coincident);
-            for (const Hit& h : hits) {
-              splits.push_back({i, h.sc, h.p});
-              splits.push_back({j, h.sd, h.p});
-            }
-            st.crossings += hits.size();
-          }
-        }
-    }
+    for_each_pair([&](std::uint32_t i, std::uint32_t j) {
+      const Curve &C = act[i], &D = act[j];
+      ++st.pairs;
+      hits.clear();
+      bool coincident;
+      intersect_curves(C, D, lv, hits, coincident);
+      const bool lines = !coincident && C.kind == CurveKind::kLine && D.kind == CurveKind::kLine &&
+                         cross2(D.dir, C.dir) != 0;
+      const std::int8_t enter = !lines ? 0 : cross2(D.dir, C.dir) > 0 ? 1 : -1;
+      for (const Hit& h : hits) {
+        splits.push_back({i, h.sc, h.p, lines ? D.region : kNone, enter});
+        splits.push_back({j, h.sd, h.p, lines ? C.region : kNone, std::int8_t(-enter)});
+      }
+      st.crossings += hits.size();
+    });
   }
   std::sort(splits.begin(), splits.end(), [](const Split& a, const Split& b) {
     if (a.curve != b.curve) return a.curve < b.curve;
@@ -535,6 +594,20 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
         return true;
     }
     return false;
+  };
+
+  // The side of region gj on which the piece from splits[k] to splits[k + 1] lies, from the
+  // orientation of line crossings with gj at its ends: -1 inside, 1 outside, 0 unknown.
+  auto crossing_side = [&](std::size_t k, std::uint32_t gj) {
+    const std::uint32_t c = splits[k].curve;
+    int side = 0;
+    auto vote = [&](int v) { side = side == 0 || side == v ? v : 2; };
+    for (std::size_t q = k + 1; q-- > 0 && splits[q].curve == c && splits[q].s == splits[k].s;)
+      if (splits[q].other == gj && splits[q].enter != 0) vote(-splits[q].enter);
+    for (std::size_t q = k + 1;
+         q < splits.size() && splits[q].curve == c && splits[q].s == splits[k + 1].s; ++q)
+      if (splits[q].other == gj && splits[q].enter != 0) vote(splits[q].enter);
+    return side == 2 ? 0 : side;
   };
 
   // Pieces between consecutive splits; keep those on the boundary of U.
@@ -561,17 +634,31 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       if (phi < -on) {
         keep = false;
       } else if (phi <= on) {
-        // On G's boundary: coincident along the piece when its quarter points are too.
-        bool coincident = true;
-        for (double f : {0.25, 0.75})
-          if (std::abs(region_phi(G, curve_point(C, s0.s + f * (s1.s - s0.s)), lv)) > on)
-            coincident = false;
-        // Regions on both sides: inside U. Same side: the lower element id keeps the shared
-        // piece, provided it has a curve there (a capsule's end caps are its vertices').
-        if (coincident) {
-          const Vec2 t = curve_tangent(C, 0.5 * (s0.s + s1.s));
-          if (gout.dot(Vec2(t.y(), -t.x())) < 0 || (G.element < C.element && emits_at(G, m)))
-            keep = false;
+        // The midpoint is on G's boundary. The piece does not cross it (crossings split the
+        // curves), so a quarter point clearly inside or outside G decides the side: next to
+        // a tangent joint the piece leaves the curve it touches only quadratically, within
+        // `on` over sqrt(2 on rho), and rho is up to R / sin^2(slope) on a flat edge's
+        // ellipse (a clip line ending on it). Coincident when both quarter points are on it.
+        int in = 0, out = 0;
+        for (double f : {0.25, 0.75}) {
+          const double pf = region_phi(G, curve_point(C, s0.s + f * (s1.s - s0.s)), lv);
+          in += pf < -on;
+          out += pf > on;
+        }
+        if (in > 0 && out == 0) keep = false;
+        if (in == 0 && out == 0) {
+          // Along G's boundary. Next to a crossing with one of G's lines the crossing's
+          // orientation tells the side: clip lines of nearly coplanar facets cross at a
+          // grazing angle theta and stay within `on` of each other over on / theta.
+          const int side = crossing_side(k, gj);
+          if (side < 0) keep = false;
+          // Regions on both sides: inside U. Same side: the lower element id keeps the shared
+          // piece, provided it has a curve there (a capsule's end caps are its vertices').
+          if (side == 0) {
+            const Vec2 t = curve_tangent(C, 0.5 * (s0.s + s1.s));
+            if (gout.dot(Vec2(t.y(), -t.x())) < 0 || (G.element < C.element && emits_at(G, m)))
+              keep = false;
+          }
         }
       }
     }

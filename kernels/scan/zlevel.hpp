@@ -35,12 +35,17 @@
 // through them; regions and curves that reach no other cell are never built. Each remaining
 // curve is cut into sub-pieces of about a cell; those lying in interior cells or strictly
 // inside one other region are dropped, and the curve is trimmed to the rest (crossings there
-// cannot be on the boundary). The trimmed curves are split at their exact
-// crossings (closed form when a line is involved or for two circles; certified
+// cannot be on the boundary); where curves coincide (the shadows of a wall's stacked edges
+// and vertices), only the lowest element id's is kept. The trimmed curves are split at their
+// exact crossings (closed form when a line is involved or for two circles; certified
 // branch-and-bound root isolation on the arc parameter otherwise), each piece is kept when
-// its midpoint lies strictly inside no other region (coincident pieces: the lower element id
-// keeps a shared piece, pieces with regions on both sides are dropped), and kept pieces are
-// linked end to end (tol::kZLevelLink) into loops.
+// it lies strictly inside no other region, and kept pieces are linked end to end
+// (tol::kZLevelLink) into loops. A piece lies on one side of each region's boundary: its
+// midpoint decides; within tol::kZLevelOnBoundary of the boundary its quarter points do (a
+// piece leaving a tangent joint, where a flat edge's ellipse has a radius of curvature up to
+// R / sin^2(slope)), then the orientation of a line crossing at its ends (clip lines of
+// nearly coplanar facets crossing at a grazing angle); else it is coincident (the lower
+// element id keeps a shared piece, pieces with regions on both sides are dropped).
 //
 // Contacts. On a capsule side or vertex circle where the element lies above the level
 // (ContourSeg::shadow), E jumps there (a wall or an overhang): the ball at the level does not

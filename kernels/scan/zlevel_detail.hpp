@@ -119,6 +119,10 @@ struct Hit {
 void intersect_curves(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
                       bool& coincident);
 
+// When C and D lie on the same line or circle (as intersect_curves decides) and overlap:
+// the overlap as the parameter interval [d0, d1] on D. Ellipses are not compared (false).
+bool coincident_overlap(const Curve& C, const Curve& D, double& d0, double& d1);
+
 // ---- loops (zlevel_loops.cpp) ----
 
 // A piece of curves[curve] on the boundary of U, parameters s0 < s1, ends a and b.

@@ -2,6 +2,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "kernels/geom/tolerance.hpp"
 #include "kernels/scan/zlevel_detail.hpp"
@@ -296,6 +297,29 @@ void finish_box(Curve& c) {
     c.box[2] = std::max(c.box[2], t.x());
     c.box[3] = std::max(c.box[3], t.y());
   }
+}
+
+bool coincident_overlap(const Curve& C, const Curve& D, double& d0, double& d1) {
+  if (C.kind != D.kind) return false;
+  const double on = tol::kZLevelOnBoundary;
+  if (C.kind == CurveKind::kLine) {
+    // The test of line_line.
+    if (std::abs(cross2(C.dir, D.dir)) > 1e-15 || std::abs(cross2(D.dir, C.a - D.a)) > on ||
+        std::abs(cross2(D.dir, C.b - D.a)) > on)
+      return false;
+    const double ta = (C.a - D.a).dot(D.dir), tb = (C.b - D.a).dot(D.dir);
+    d0 = std::max(0.0, std::min(ta, tb));
+    d1 = std::min(D.len, std::max(ta, tb));
+  } else if (C.kind == CurveKind::kCircle) {
+    // The test of circle_circle. Arcs sweep at most pi / 2 counter-clockwise from angle t0.
+    if ((D.centre - C.centre).norm() > on || std::abs(C.r1 - D.r1) > on) return false;
+    const double delta = std::remainder(C.t0 - D.t0, 2 * std::numbers::pi);
+    d0 = std::max(0.0, delta);
+    d1 = std::min(D.len, delta + C.len);
+  } else {
+    return false;
+  }
+  return d1 > d0;
 }
 
 void intersect_curves(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,

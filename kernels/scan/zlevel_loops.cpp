@@ -175,11 +175,13 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
     j.b2 = contact_vector(el, region_of(regions, j.e2), cur.seg.a, lv);
     c.junctions.push_back(j);
   }
-  // Signed area: the polygon of the end points plus each arc's cap r1 r2 (dt - sin dt) / 2.
+  // Signed area: the polygon of the end points (with the link gaps between segments, up to
+  // tol::kZLevelLink) plus each arc's cap r1 r2 (dt - sin dt) / 2.
   const Vec2 o = c.segs[0].a;
   double area = 0;
-  for (const ContourSeg& s : c.segs) {
-    area += 0.5 * cross2(s.a - o, s.b - o);
+  for (std::size_t i = 0; i < m; ++i) {
+    const ContourSeg& s = c.segs[i];
+    area += 0.5 * (cross2(s.a - o, s.b - o) + cross2(s.b - o, c.segs[(i + 1) % m].a - o));
     if (s.kind != ContourSegKind::kLine) {
       const double dt = s.t1 - s.t0;
       area += 0.5 * s.r1 * s.r2 * (dt - std::sin(dt));

@@ -539,6 +539,91 @@ TEST(ZLevel, TiltedFacetClipLine) {
   for (double zz : {z, 0.0, 3.9, -1.2}) check_result(o, run(el, zz), rng, -3, -3, 13, 13, 400);
 }
 
+// Just below the top vertex V of a facet whose edges from V are flat (slope 0.05) but run
+// nearly along the facet's level lines, the clip line is short (length L) and ends tangent to
+// both edges' ellipses on their flat sides (radius of curvature about 90 mm there). The
+// ellipses cross each other between the joints; their pieces from the joints to that crossing
+// lie inside the facet's region, but for L around 1.5e-4 mm only by about 1e-11 mm at the
+// midpoints (regression: such pieces were kept and left open chains, as on the bunny).
+TEST(ZLevel, ShortClipLineBetweenFlatEllipses) {
+  const double R = 2.5, g = 0.5;  // facet plane z = 1 - g y, V = (0, 0, 1) on top
+  const TriangleMesh mesh = one_triangle({0, 0, 1}, {-10, 1, 1 - g}, {10, 1, 1 - g});
+  const OffsetElements el = build_offset_elements(mesh, R);
+  const Vec3 n = Vec3(0, g, 1).normalized();
+  Oracle o(mesh, el);
+  std::mt19937_64 rng(8);
+  int levels = 0;
+  for (double L = 3e-5; L < 2e-3; L *= 1.15, ++levels) {
+    // The offset vertex V + R n lies at height 1 + R n.z; the clip line's length is 20 dy
+    // where the level is g dy below it.
+    const double z = 1 + R * n.z() - g * (L / 20) - R;
+    const ZLevelResult r = run(el, z);
+    EXPECT_EQ(r.stats.open_chains, 0u) << "L " << L;
+    ASSERT_EQ(r.contours.size(), 1u) << "L " << L;
+    int clips = 0;
+    for (const ContourSeg& s : r.contours[0].segs)
+      if (s.element == 0) {
+        ++clips;
+        EXPECT_NEAR((s.b - s.a).norm(), L, 1e-3 * L);
+      }
+    EXPECT_EQ(clips, 1) << "L " << L;
+    if (levels % 8 == 0) check_result(o, r, rng, -14, -5, 14, 5, 200);
+  }
+}
+
+// Two facets meeting in a valley bent by 3e-6 along a flat edge: their clip lines cross at a
+// grazing angle, so each one's stretch past the crossing lies within 1e-11 mm of the other's
+// line over more than the link tolerance (regression: the lower facet kept its stretch, as
+// if shared, and left open chains; bends of about 1e-6 occur on scanned meshes).
+TEST(ZLevel, GrazingClipLineCrossing) {
+  const double R = 2.5, k = 0.1, s = 1, bend = 3e-6;
+  const TriangleMesh mesh{
+      {{0, 0, 0}, {10, 0, 10 * k}, {5, 5, 5 * k + 5 * s}, {5, -5, 5 * k - 5 * (s - bend)}},
+      {{0, 1, 2}, {1, 0, 3}}};
+  const OffsetElements el = build_offset_elements(mesh, R);
+  Oracle o(mesh, el);
+  std::mt19937_64 rng(9);
+  for (int l = 0; l < 40; ++l) {
+    const double z = -1.5 + 0.0731 * l;
+    const ZLevelResult r = run(el, z);
+    EXPECT_EQ(r.stats.open_chains, 0u) << "z " << z;
+    EXPECT_EQ(r.contours.size(), 1u) << "z " << z;
+    if (l % 5 == 0) check_result(o, r, rng, -3, -8, 13, 8, 200);
+  }
+}
+
+// A square tower whose walls are cut into 40 bands: below the top every band's edges and
+// corners shadow the same lines and circles. The contour is the square dilated by R (area
+// exact, with the link gaps at the near-tangent joints), and the stacked coincident curves
+// are trimmed to one before crossing (regression: k^2 pairs and pieces).
+TEST(ZLevel, StackedWallEdgesShareOneShadow) {
+  const int bands = 40;
+  const double R = 2, side = 20, height = 30;
+  TriangleMesh mesh;
+  const Vec2 corner[4] = {{0, 0}, {side, 0}, {side, side}, {0, side}};
+  for (int b = 0; b <= bands; ++b)
+    for (const Vec2& c : corner) mesh.vertices.emplace_back(c.x(), c.y(), height * b / bands);
+  for (std::uint32_t b = 0; b < std::uint32_t(bands); ++b)
+    for (std::uint32_t i = 0; i < 4; ++i) {
+      const std::uint32_t p = 4 * b + i, q = 4 * b + (i + 1) % 4;
+      mesh.facets.push_back({p, q, q + 4});
+      mesh.facets.push_back({p, q + 4, p + 4});
+    }
+  const std::uint32_t top = 4 * bands;
+  mesh.facets.push_back({top, top + 1, top + 2});
+  mesh.facets.push_back({top, top + 2, top + 3});
+  const OffsetElements el = build_offset_elements(mesh, R);
+  Oracle o(mesh, el);
+  std::mt19937_64 rng(10);
+  for (double z : {1.0, 10.0, 25.0}) {
+    const ZLevelResult r = run(el, z);
+    ASSERT_EQ(r.contours.size(), 1u) << "z " << z;
+    EXPECT_NEAR(r.contours[0].area, side * side + 4 * side * R + kPi * R * R, 1e-9) << "z " << z;
+    EXPECT_LT(r.stats.pieces, 100u) << "z " << z;
+    check_result(o, r, rng, -4, -4, side + 4, side + 4, 300);
+  }
+}
+
 // A ring-shaped ridge: an outer loop and a hole inside it.
 TEST(ZLevel, RingRidgeGivesOuterLoopAndHole) {
   TriangleMesh mesh;
