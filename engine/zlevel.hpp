@@ -53,14 +53,8 @@ struct ZLevelSegmentRecord {
   std::array<double, 7> geometry{};
 };
 
-struct ZLevelJunctionRecord {
-  std::int64_t path = 0;
-  std::uint8_t kind = 0;  // JunctionKind
-  std::array<double, 3> position{};
-  std::array<double, 3> b1{}, b2{};
-  ScanElementRef element1, element2;
-  double angle = 0;  // rad between b1 and b2
-};
+// Junctions: the same record as the scan's (path, kind, position, b1, b2, elements, angle).
+using ZLevelJunctionRecord = ScanJunctionRecord;
 
 struct ZLevelChunk {
   ClChunk cl;

@@ -3,6 +3,7 @@
 #include <cassert>
 #include <span>
 
+#include "batch/jobs/junction_table.hpp"
 #include "engine/scan.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "kernels/scan/plane_slice.hpp"
@@ -28,10 +29,6 @@ static_assert(static_cast<int>(JunctionKind::kConvex) == 0 &&
 constexpr const char* kSegmentKindEnum =
     "0=facet_line,1=sphere_arc,2=cylinder_ellipse,3=cylinder_line,4=cylinder_circle,5=floor,"
     "6=vertical";
-constexpr const char* kJunctionKindEnum = "0=convex,1=sharp_concave,2=tangent";
-constexpr const char* kElementText =
-    "mesh element: kind (0 facet, 1 edge, 2 vertex, 3 floor), then indices a, b: facet index, "
-    "-1; edge's two vertex indices; vertex index, -1; -1, -1 (floor)";
 
 // The exact segments and junctions of the whole job, structure-of-arrays in cutting order
 // (rows of 3 or 5 values flattened), as they go to HDF5.
@@ -39,34 +36,19 @@ struct ScanRecords {
   std::vector<std::int64_t> seg_path, seg_element;
   std::vector<std::uint8_t> seg_kind;
   std::vector<double> seg_start, seg_end, seg_geometry;
-  std::vector<std::int64_t> jun_path, jun_element1, jun_element2;
-  std::vector<std::uint8_t> jun_kind;
-  std::vector<double> jun_position, jun_b1, jun_b2, jun_angle;
+  JunctionTable junctions;
 
-  static void push(std::vector<double>& to, const std::array<double, 3>& v) {
-    to.insert(to.end(), v.begin(), v.end());
-  }
-  static void push(std::vector<std::int64_t>& to, const ScanElementRef& e) {
-    to.insert(to.end(), {e.kind, e.a, e.b});
-  }
   void append(const ScanChunk& ch) {
     for (const ScanSegmentRecord& s : ch.segments) {
       seg_path.push_back(s.path);
       seg_kind.push_back(s.kind);
-      push(seg_element, s.element);
-      push(seg_start, s.start);
-      push(seg_end, s.end);
+      push_row(seg_element, s.element);
+      push_row(seg_start, s.start);
+      push_row(seg_end, s.end);
       seg_geometry.insert(seg_geometry.end(), s.geometry.begin(), s.geometry.end());
     }
     for (const ScanJunctionRecord& j : ch.junctions) {
-      jun_path.push_back(j.path);
-      jun_kind.push_back(j.kind);
-      push(jun_position, j.position);
-      push(jun_b1, j.b1);
-      push(jun_b2, j.b2);
-      push(jun_element1, j.element1);
-      push(jun_element2, j.element2);
-      jun_angle.push_back(j.angle);
+      junctions.add(j);
     }
   }
 };
@@ -91,23 +73,8 @@ void write_records(const ScanRecords& r, out::ClJob& cl) {
                  "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
                  "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle of "
                  "the major axis from +u (upper arc); vertical: u; unused columns 0");
-  cl.write_array(g, "junction_path", all(r.jun_path), 0, "",
-                 "cut path of junction i: its index among the job's cut paths (path_kind 0)");
-  cl.write_array(g, "junction_kind", all(r.jun_kind), 0, "", kJunctionKindEnum);
-  cl.write_array(g, "junction_position", all(r.jun_position), 3, "mm",
-                 "tool tip x, y, z at the junction");
-  cl.write_array(g, "junction_b1", all(r.jun_b1), 3, "",
-                 "unit vector from the contact on the element before the junction (in cutting "
-                 "order) to the ball centre");
-  cl.write_array(g, "junction_b2", all(r.jun_b2), 3, "",
-                 "unit vector from the contact on the element after the junction (in cutting "
-                 "order) to the ball centre");
-  cl.write_array(g, "junction_element1", all(r.jun_element1), 3, "",
-                 std::string("element before the junction; ") + kElementText);
-  cl.write_array(g, "junction_element2", all(r.jun_element2), 3, "",
-                 std::string("element after the junction; ") + kElementText);
-  cl.write_array(g, "junction_angle", all(r.jun_angle), 0, "rad",
-                 "angle between junction_b1 and junction_b2");
+  r.junctions.write(cl, g, "cut path of junction i: its index among the job's cut paths (path_kind 0)",
+                    "tool tip x, y, z at the junction");
 }
 
 void push_scan_stats(const ScanStats& st, std::vector<out::StatValue>& stats) {

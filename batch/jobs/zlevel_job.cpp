@@ -4,6 +4,7 @@
 #include <span>
 #include <string>
 
+#include "batch/jobs/junction_table.hpp"
 #include "engine/zlevel.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "kernels/scan/zlevel.hpp"
@@ -24,10 +25,6 @@ static_assert(static_cast<int>(JunctionKind::kConvex) == 0 &&
               static_cast<int>(JunctionKind::kTangent) == 2);
 
 constexpr const char* kSegmentKindEnum = "0=line,1=circular_arc,2=elliptic_arc";
-constexpr const char* kJunctionKindEnum = "0=convex,1=sharp_concave,2=tangent";
-constexpr const char* kElementText =
-    "mesh element: kind (0 facet, 1 edge, 2 vertex), then indices a, b: facet index, -1; "
-    "edge's two vertex indices; vertex index, -1";
 
 // The exact contours of the whole job, structure-of-arrays in cutting order (rows of 3 or 7
 // values flattened), as they go to HDF5.
@@ -35,37 +32,22 @@ struct ZLevelRecords {
   std::vector<std::int64_t> seg_path, seg_element;
   std::vector<std::uint8_t> seg_kind, seg_shadow;
   std::vector<double> seg_start, seg_end, seg_geometry;
-  std::vector<std::int64_t> jun_path, jun_element1, jun_element2;
-  std::vector<std::uint8_t> jun_kind;
-  std::vector<double> jun_position, jun_b1, jun_b2, jun_angle;
+  JunctionTable junctions;
   std::vector<double> contour_level;
   std::vector<std::uint8_t> contour_hole;
 
-  static void push(std::vector<double>& to, const std::array<double, 3>& v) {
-    to.insert(to.end(), v.begin(), v.end());
-  }
-  static void push(std::vector<std::int64_t>& to, const ScanElementRef& e) {
-    to.insert(to.end(), {e.kind, e.a, e.b});
-  }
   void append(const ZLevelChunk& ch) {
     for (const ZLevelSegmentRecord& s : ch.segments) {
       seg_path.push_back(s.path);
       seg_kind.push_back(s.kind);
       seg_shadow.push_back(s.shadow);
-      push(seg_element, s.element);
-      push(seg_start, s.start);
-      push(seg_end, s.end);
+      push_row(seg_element, s.element);
+      push_row(seg_start, s.start);
+      push_row(seg_end, s.end);
       seg_geometry.insert(seg_geometry.end(), s.geometry.begin(), s.geometry.end());
     }
     for (const ZLevelJunctionRecord& j : ch.junctions) {
-      jun_path.push_back(j.path);
-      jun_kind.push_back(j.kind);
-      push(jun_position, j.position);
-      push(jun_b1, j.b1);
-      push(jun_b2, j.b2);
-      push(jun_element1, j.element1);
-      push(jun_element2, j.element2);
-      jun_angle.push_back(j.angle);
+      junctions.add(j);
     }
     contour_level.insert(contour_level.end(), ch.contour_level.begin(), ch.contour_level.end());
     contour_hole.insert(contour_hole.end(), ch.contour_hole.begin(), ch.contour_hole.end());
@@ -95,23 +77,8 @@ void write_records(const ZLevelRecords& r, out::ClJob& cl) {
                  "arcs (kinds 1, 2): centre x, centre y (mm), r1, r2 (mm), angle of the axis from "
                  "+x, t0, t1 (rad): p(t) = centre + r1 cos t axis + r2 sin t perp(axis), t from "
                  "t0 to t1 (t1 > t0, counter-clockwise); lines: zeros");
-  cl.write_array(g, "junction_path", all(r.jun_path), 0, "",
-                 "cut path (contour) of junction i: its index among the job's cut paths");
-  cl.write_array(g, "junction_kind", all(r.jun_kind), 0, "", kJunctionKindEnum);
-  cl.write_array(g, "junction_position", all(r.jun_position), 3, "mm",
-                 "tool tip x, y, z at the junction (the start of a segment)");
-  cl.write_array(g, "junction_b1", all(r.jun_b1), 3, "",
-                 "unit vector from the contact on the element before the junction (in cutting "
-                 "order) to the ball centre");
-  cl.write_array(g, "junction_b2", all(r.jun_b2), 3, "",
-                 "unit vector from the contact on the element after the junction (in cutting "
-                 "order) to the ball centre");
-  cl.write_array(g, "junction_element1", all(r.jun_element1), 3, "",
-                 std::string("element before the junction; ") + kElementText);
-  cl.write_array(g, "junction_element2", all(r.jun_element2), 3, "",
-                 std::string("element after the junction; ") + kElementText);
-  cl.write_array(g, "junction_angle", all(r.jun_angle), 0, "rad",
-                 "angle between junction_b1 and junction_b2");
+  r.junctions.write(cl, g, "cut path (contour) of junction i: its index among the job's cut paths",
+                    "tool tip x, y, z at the junction (the start of a segment)");
   cl.write_array(g, "contour_level", all(r.contour_level), 0, "mm",
                  "tool-tip z of contour k (the k-th cut path)");
   cl.write_array(g, "contour_hole", all(r.contour_hole), 0, "",
