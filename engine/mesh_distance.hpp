@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "kernels/geom/vec.hpp"
+#include "kernels/mesh/closest_point.hpp"  // the single-facet routines it runs
 #include "kernels/mesh/triangle_mesh.hpp"
 
 namespace ncpath {
@@ -66,14 +67,5 @@ class MeshDistance {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-// The single-facet routines the index runs in its callbacks, exposed for brute-force scans
-// (closest() equals such a scan bitwise). n = (b - a) x (c - a) must be non-zero.
-// Distance from p to triangle abc; writes the closest point to q.
-double point_triangle_closest(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& q);
-// First t in [0, t_max] at which the ball of radius r centred at x + t * d (d unit) touches
-// triangle abc; 0 when it touches at t = 0; +inf when not by t_max.
-double sweep_ball_triangle(const Vec3& x, const Vec3& d, double r, double t_max, const Vec3& a,
-                           const Vec3& b, const Vec3& c);
 
 }  // namespace ncpath

@@ -13,6 +13,7 @@
 #include "engine/surface_check.hpp"
 #include "engine/zlevel.hpp"
 #include "kernels/cleanup/pencil.hpp"
+#include "kernels/mesh/closest_point.hpp"
 #include "kernels/scan/envelope.hpp"
 #include <functional>
 #include <map>
@@ -303,11 +304,19 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
     const auto& V = mesh.vertices;
     if (e.kind == 0) {
       const auto& f = mesh.facets[std::size_t(e.a)];
-      return [&V, f](const Vec3& q) { return closest_on_triangle(q, V[f[0]], V[f[1]], V[f[2]]); };
+      return [&V, f](const Vec3& q) {
+        Vec3 c;
+        point_triangle_closest(q, V[f[0]], V[f[1]], V[f[2]], c);
+        return c;
+      };
     }
     if (e.kind == 1) {
       const Vec3 a = V[std::size_t(e.a)], b = V[std::size_t(e.b)];
-      return [a, b](const Vec3& q) { return closest_on_segment(q, a, b); };
+      return [a, b](const Vec3& q) {
+        Vec3 c;
+        point_segment_closest(q, a, b, c);
+        return c;
+      };
     }
     const Vec3 v = V[std::size_t(e.a)];
     return [v](const Vec3&) { return v; };

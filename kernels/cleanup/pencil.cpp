@@ -244,28 +244,6 @@ std::vector<std::vector<Vec3>> merge_paths(std::vector<std::vector<Vec3>> paths,
   return out;
 }
 
-Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 d = b - a;
-  const double l2 = d.squaredNorm();
-  const double t = l2 > 0 ? std::clamp((p - a).dot(d) / l2, 0.0, 1.0) : 0.0;
-  return a + t * d;
-}
-
-Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const double n2 = n.squaredNorm();
-  if (n2 > 0) {
-    const Vec3 q = p - n * ((p - a).dot(n) / n2);
-    const double s0 = (b - a).cross(q - a).dot(n), s1 = (c - b).cross(q - b).dot(n),
-                 s2 = (a - c).cross(q - c).dot(n);
-    if (s0 >= 0 && s1 >= 0 && s2 >= 0) return q;
-  }
-  Vec3 best = closest_on_segment(p, a, b);
-  for (const Vec3& q : {closest_on_segment(p, b, c), closest_on_segment(p, c, a)})
-    if ((q - p).squaredNorm() < (best - p).squaredNorm()) best = q;
-  return best;
-}
-
 bool crease_at_height(const std::function<Vec3(const Vec3&)>& closest1,
                       const std::function<Vec3(const Vec3&)>& closest2, const Vec2& guess,
                       double zc, double R, double reach, Vec2& out) {

@@ -87,10 +87,6 @@ std::vector<std::vector<Vec3>> merge_paths(std::vector<std::vector<Vec3>> paths,
                                            double merge_distance, double min_cos,
                                            double min_length);
 
-// Closest points (mm) of a triangle and of a segment to p.
-Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
-Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b);
-
 // The crease point at ball-centre height zc of two elements given by their closest-point
 // functions: the (x, y) where the ball centre (x, y, zc) is at distance R from both, by
 // Newton from `guess` (the gradient of a distance is the unit vector from the closest point
