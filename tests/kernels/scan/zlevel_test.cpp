@@ -5,6 +5,7 @@
 // U on the left of every segment, point-in-contours equal to "drop >= level", bi-contact
 // vectors at distance R from their elements; the result does not depend on the candidates'
 // order.
+#include "tests/kernels/scan/scan_test_support.hpp"
 #include "kernels/scan/zlevel.hpp"
 
 #include <gtest/gtest.h>
@@ -267,37 +268,9 @@ bool same_result(const ZLevelResult& a, const ZLevelResult& b) {
 
 // ---- meshes ----
 
-TriangleMesh random_soup(std::mt19937_64& rng, int count) {
-  std::uniform_real_distribution<double> pos(0, 20), off(-3, 3), zc(0, 4);
-  TriangleMesh m;
-  for (int i = 0; i < count; ++i) {
-    const Vec3 c(pos(rng), pos(rng), zc(rng));
-    const auto base = std::uint32_t(m.vertices.size());
-    for (int k = 0; k < 3; ++k) m.vertices.push_back(c + Vec3(off(rng), off(rng), off(rng)));
-    m.facets.push_back({base, base + 1, base + 2});
-  }
-  return m;
-}
-
-// Height field on an n x n grid with one facet deleted (a hole) and a non-manifold edge.
-TriangleMesh random_terrain(std::mt19937_64& rng, int n) {
-  std::uniform_real_distribution<double> h(0, 3), jitter(-0.3, 0.3);
-  TriangleMesh m;
-  const double step = 20.0 / (n - 1);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i)
-      m.vertices.emplace_back(i * step + jitter(rng), j * step + jitter(rng), h(rng));
-  auto id = [n](int i, int j) { return std::uint32_t(j * n + i); };
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  m.facets.erase(m.facets.begin() + std::ptrdiff_t(m.facets.size() / 2));
-  m.vertices.emplace_back(5.0, 5.0, 6.0);
-  m.facets.push_back({id(2, 2), id(3, 3), std::uint32_t(m.vertices.size() - 1)});
-  return m;
-}
+// Random soups and terrains: the scan tests' (tests/kernels/scan/scan_test_support.hpp).
+using scan_test::random_soup;
+using scan_test::random_terrain;
 
 TriangleMesh one_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
   return TriangleMesh{{a, b, c}, {{0, 1, 2}}};
