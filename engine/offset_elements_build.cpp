@@ -28,7 +28,7 @@ std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& v) {
 }
 
 OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double radius,
-                                              bool swap_xy) {
+                                              bool swap_xy, Coplanar coplanar) {
   // Welded copy (facets remapped to the first of exactly equal vertices), x and y swapped
   // when asked.
   TriangleMesh mesh;
@@ -96,8 +96,10 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
   par::for_ranges(ne, 16384, [&](std::size_t b, std::size_t e) {
     classify_edges(sorted, key_facet, edge_start, std::uint32_t(b), std::uint32_t(e), el);
   });
+  if (coplanar == Coplanar::kMerge) share_coplanar_offsets(key_facet, edge_start, el);
 
   collect_vertices(el);
+  if (coplanar == Coplanar::kMerge) drop_straight_vertices(el);
   return el;
 }
 

@@ -28,9 +28,9 @@ std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& vertices
 // becomes connected, so its edges are classified and its duplicates vanish), built with
 // count/scan/fill over chunks of facets, parallel sorts and parallel edge classification.
 // swap_xy: build them for the mesh with x and y exchanged (the frame of planes x = const);
-// element ids are the same either way.
+// element ids are the same either way. coplanar: as for build_offset_elements.
 OffsetElements build_offset_elements_parallel(const TriangleMesh& mesh, double radius,
-                                              bool swap_xy);
+                                              bool swap_xy, Coplanar coplanar = Coplanar::kMerge);
 
 // The same elements with x and y exchanged in every position and direction (a mirror: the
 // edge wedges, rings and kinds are unchanged), i.e. the elements of the swapped mesh without

@@ -211,6 +211,14 @@ inline constexpr double kVerticalEdge = 1e-12;
 // are overlapped by those triangles by about R times the bend, far above rounding.
 inline constexpr double kFlatEdgeKeep = 1e-9;
 
+// Dimensionless (sine). Facets joined by edges of two facets whose unit normals are within
+// this of a region's first facet form a coplanar region (share_coplanar_offsets): they are
+// offset along that one normal, so their offset triangles meet without slivers, and the
+// edges and vertices inside the region are dropped. The offset surface moves by at most
+// R times twice this (2.5e-11 mm for a 5 mm ball); subdivided and CAD meshes (flat faces
+// split into many triangles) have normals equal to ~1e-13.
+inline constexpr double kCoplanarSine = 1e-11;
+
 // Dimensionless (times R). A slice point of a cylinder or sphere counts as inside its
 // wedge / ring cone (the ball there would not cut into a facet) up to this much penetration.
 inline constexpr double kTrimSlack = 1e-12;

@@ -294,7 +294,101 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
   }
 }
 
-OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius) {
+void drop_straight_vertices(OffsetElements& el) {
+  const std::size_t nv = el.vertex_count();
+  // A vertex inside a straight edge line (two ring points exactly opposite, e.g. a midpoint
+  // of a subdivided or CAD mesh): its cone lies in the plane perpendicular to the line and
+  // within the wedge of the edge to either neighbour (the opposite vertices of that edge's
+  // facets are ring points), so its sphere shows nothing the cylinders do not: dropped.
+  for (std::size_t i = 0; i < nv; ++i) {
+    if (!el.vertex_reachable[i]) continue;
+    const Vec3& c = el.points[el.vertex_source[i]];
+    const std::uint32_t r0 = el.ring_offsets[i], r1 = el.ring_offsets[i + 1];
+    bool straight = false;
+    for (std::uint32_t a = r0; a < r1 && !straight; ++a)
+      for (std::uint32_t b = a + 1; b < r1 && !straight; ++b) {
+        const Vec3 da = el.points[el.ring[a]] - c, db = el.points[el.ring[b]] - c;
+        straight = da.dot(db) < 0 &&
+                   da.cross(db).norm() <= tol::kCoplanarSine * da.norm() * db.norm();
+      }
+    if (straight) el.vertex_reachable[i] = 0;
+  }
+}
+
+std::size_t share_coplanar_offsets(std::span<const std::uint32_t> key_facet,
+                                   std::span<const std::uint32_t> edge_start, OffsetElements& el) {
+  const std::size_t nf = el.facet_count(), ne = el.edge_count();
+  // Facet adjacency through joinable edges (CSR).
+  auto pair_of = [&](std::size_t e) {
+    return std::array<std::uint32_t, 2>{key_facet[edge_start[e]], key_facet[edge_start[e] + 1]};
+  };
+  auto joinable = [&](std::size_t e) {
+    // Flat and continuing across the edge (w1 and w2 opposite), not folded back onto itself.
+    if (el.edge_facet_count[e] != 2 || !el.edge_flat[e] || !el.edge_reachable[e] ||
+        !(el.edge_wedge[e][0].dot(el.edge_wedge[e][1]) < -0.5))
+      return false;
+    const auto f = pair_of(e);
+    return el.facet_vertical[f[0]] == el.facet_vertical[f[1]];
+  };
+  std::vector<std::uint32_t> start(nf + 1, 0);
+  for (std::size_t e = 0; e < ne; ++e)
+    if (joinable(e))
+      for (std::uint32_t f : pair_of(e)) ++start[f + 1];
+  for (std::size_t f = 0; f < nf; ++f) start[f + 1] += start[f];
+  std::vector<std::uint32_t> adj(start[nf]), fill(start.begin(), start.end() - 1);
+  for (std::size_t e = 0; e < ne; ++e)
+    if (joinable(e)) {
+      const auto f = pair_of(e);
+      adj[fill[f[0]]++] = f[1];
+      adj[fill[f[1]]++] = f[0];
+    }
+  // Regions grown from the lowest unassigned slot.
+  constexpr std::uint32_t kNone = ~0u;
+  std::vector<std::uint32_t> region(nf, kNone), stack;
+  for (std::uint32_t seed = 0; seed < nf; ++seed) {
+    if (region[seed] != kNone || start[seed] == start[seed + 1]) continue;
+    const Vec3 n = el.facet_normal[seed];
+    region[seed] = seed;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const std::uint32_t f = stack.back();
+      stack.pop_back();
+      for (std::uint32_t k = start[f]; k < start[f + 1]; ++k) {
+        const std::uint32_t g = adj[k];
+        if (region[g] != kNone) continue;
+        // Vertical facets (never sliced; their normals' signs are arbitrary) join by the
+        // line of their normal and keep their own offset triangle.
+        const Vec3& m = el.facet_normal[g];
+        const bool vertical = el.facet_vertical[seed];
+        if (el.facet_vertical[g] != vertical || !(vertical || m.dot(n) > 0) ||
+            !(m.cross(n).norm() <= tol::kCoplanarSine))
+          continue;
+        region[g] = seed;
+        stack.push_back(g);
+        if (!vertical && m != n) {
+          el.facet_normal[g] = n;
+          const Vec3 shift = el.radius * n;
+          const auto& fv = el.facet_vertices[g];
+          el.facet_tri[g] = {el.points[fv[0]] + shift, el.points[fv[1]] + shift,
+                             el.points[fv[2]] + shift};
+        }
+      }
+    }
+  }
+  std::size_t dropped = 0;
+  for (std::size_t e = 0; e < ne; ++e) {
+    if (el.edge_facet_count[e] != 2) continue;
+    const auto f = pair_of(e);
+    if (!joinable(e) || region[f[0]] == kNone || region[f[0]] != region[f[1]]) continue;
+    el.edge_reachable[e] = 0;
+    el.edge_wedge[e] = {Vec3::Zero(), Vec3::Zero()};
+    ++dropped;
+  }
+  return dropped;
+}
+
+OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius,
+                                     Coplanar coplanar) {
   OffsetElements el;
   el.radius = radius;
   el.points = mesh.vertices;
@@ -332,7 +426,9 @@ OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius) {
   el.edge_wedge.resize(ne);
   el.edge_flat.resize(ne);
   classify_edges(sorted, key_facet, edge_start, 0, ne, el);
+  if (coplanar == Coplanar::kMerge) share_coplanar_offsets(key_facet, edge_start, el);
   collect_vertices(el);
+  if (coplanar == Coplanar::kMerge) drop_straight_vertices(el);
   return el;
 }
 

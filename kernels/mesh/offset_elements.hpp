@@ -156,12 +156,40 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
                     std::span<const std::uint32_t> edge_start, std::uint32_t begin,
                     std::uint32_t end, OffsetElements& out, double flat_sine = tol::kEdgeFlatSine);
 
+// Coplanar regions: facets joined through flat edges of exactly two facets (continuing
+// across the edge, not folded) whose normals are within tol::kCoplanarSine of the region's
+// first facet (lowest slot) take that facet's normal, and their offset triangles are
+// recomputed with it, so that they tile the offset plane exactly (the slicer computes a
+// shared edge's crossing the same way for both facets); the edges inside a region of two or
+// more facets become unreachable (their cylinder's contact cone is the normal direction,
+// covered by the offset triangles), and collect_vertices() then drops the vertices inside
+// (all edges unreachable). Vertical facets form regions of their own (normals compared up to
+// sign, offset triangles untouched: they are never sliced): inside such a region every
+// point has a point of the region's boundary straight above it, whose elements are higher. key_facet / edge_start as for classify_edges, run after it over all edges.
+// Returns the number of edges dropped. Deterministic (regions grown in slot order).
+std::size_t share_coplanar_offsets(std::span<const std::uint32_t> key_facet,
+                                   std::span<const std::uint32_t> edge_start, OffsetElements& el);
+
+// A vertex inside a straight edge line (two ring points opposite within
+// tol::kCoplanarSine, e.g. a midpoint of a subdivided or CAD mesh) becomes unreachable: its
+// cone lies in the plane perpendicular to the line and within the wedge of the edge to
+// either neighbour (the opposite vertices of that edge's facets are ring points), so its
+// sphere shows nothing the two cylinders do not (the slicer pushes cylinder caps out by
+// tol::kTrimExtend so that they overlap there). Run after collect_vertices().
+void drop_straight_vertices(OffsetElements& el);
+
 // vertex_source, vertex_reachable and the rings from facet_vertices, edge_vertices,
 // edge_reachable and edge_wedge.
 void collect_vertices(OffsetElements& el);
 
+// Whether the builders merge coplanar regions (share_coplanar_offsets). The drive-plane scan
+// does; the z-level kernel keeps every element (its facet regions are unioned with the flat
+// edges' strips filling the rounding slivers between them).
+enum class Coplanar : std::uint8_t { kMerge, kKeep };
+
 // Sequential reference build: facets, then unique edges (sorted by their vertex pair), then
 // referenced vertices (ascending index).
-OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius);
+OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius,
+                                     Coplanar coplanar = Coplanar::kMerge);
 
 }  // namespace ncpath

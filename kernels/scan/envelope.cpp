@@ -306,14 +306,28 @@ void plane_curve(std::span<const SlicePiece> pieces, std::span<const EnvelopeSpa
     const SlicePiece& p = pieces[piece];
     out.segments.push_back({piece, false, x0, x1, tip_z(p, x0), tip_z(p, x1)});
   };
+  constexpr std::size_t kNoSpan = ~std::size_t(0);
+  std::size_t prev = kNoSpan;  // the last span emitted
   for (std::size_t k = 0; k < spans.size(); ++k) {
     const EnvelopeSpan& sp = spans[k];
-    if (k == 0 || spans[k - 1].x1 < sp.x0) {
+    // A span of no length inside a run (a piece that is one point here, e.g. a facet whose
+    // vertex the plane passes through, tied with its coplanar neighbours) is skipped unless
+    // it sticks out: its neighbours meet directly, without two junctions at one point.
+    if (prev < k && k + 1 < spans.size() && !(sp.x0 < sp.x1) && spans[prev].x1 >= sp.x0 &&
+        spans[k + 1].x0 <= sp.x1) {
+      const double z = tip_z(pieces[sp.piece], sp.x0);
+      if (z <= std::max(tip_z(pieces[spans[prev].piece], sp.x0),
+                        tip_z(pieces[spans[k + 1].piece], sp.x0)) + tol::kEnvelopeJump)
+        continue;
+    }
+    const std::size_t left = prev;
+    prev = k;
+    if (left == kNoSpan || spans[left].x1 < sp.x0) {
       out.run_starts.push_back(std::uint32_t(out.segments.size()));
       push(sp.piece, sp.x0, sp.x1);
       continue;
     }
-    const SlicePiece &p = pieces[spans[k - 1].piece], &q = pieces[sp.piece];
+    const SlicePiece &p = pieces[spans[left].piece], &q = pieces[sp.piece];
     const double x = sp.x0;
     const double zl = tip_z(p, x), zr = tip_z(q, x);
     const double sl = slope(p, x), sr = slope(q, x);
@@ -324,7 +338,7 @@ void plane_curve(std::span<const SlicePiece> pieces, std::span<const EnvelopeSpa
     j.element2 = q.element;
     if (std::abs(zl - zr) > tol::kEnvelopeJump) {
       const bool left_high = zl > zr;
-      const std::uint32_t high = left_high ? spans[k - 1].piece : sp.piece;
+      const std::uint32_t high = left_high ? spans[left].piece : sp.piece;
       const Vec3 bh = left_high ? bl : br;
       const double dz = zr - zl;
       j.z = zl;

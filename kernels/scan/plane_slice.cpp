@@ -67,7 +67,10 @@ void slice_facet(const OffsetElements& el, std::uint32_t f, double y0,
       hi = std::max(hi, a.x());
     }
     if ((a.y() < y0 && b.y() > y0) || (a.y() > y0 && b.y() < y0)) {
-      const double x = a.x() + (y0 - a.y()) / (b.y() - a.y()) * (b.x() - a.x());
+      // From the lower end: the two facets of an edge get the same x to the last bit, so
+      // coplanar neighbours (one offset normal, tol::kCoplanarSine) leave no sliver.
+      const Vec3 &p = a.y() < b.y() ? a : b, &q = a.y() < b.y() ? b : a;
+      const double x = p.x() + (y0 - p.y()) / (q.y() - p.y()) * (q.x() - p.x());
       lo = std::min(lo, x);
       hi = std::max(hi, x);
     }
@@ -210,7 +213,10 @@ void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0, bool t
   if (exz > 0) {
     const Vec3 e1 = Vec3(-u.z(), 0, u.x()) / exz;  // horizontal, perpendicular to u and y
     const Vec3 e2 = u.cross(e1);                   // e2.y = +-exz
-    for (double tau : {0.0, L}) {
+    // The caps are pushed out by tol::kTrimExtend (points there are within 1e-19 mm of the
+    // end sphere), so that collinear cylinders of a straight edge line overlap instead of
+    // leaving a rounding sliver where the vertex sphere between them is dropped.
+    for (double tau : {-tol::kTrimExtend, L + tol::kTrimExtend}) {
       const double sn = (q - tau * u.y()) / (R * e2.y());
       if (!(std::abs(sn) <= 1)) continue;
       const double cs = std::sqrt((1 - sn) * (1 + sn));
@@ -260,7 +266,7 @@ void slice_cylinder(const OffsetElements& el, std::uint32_t e, double y0, bool t
     bool ok;
     const double w = cylinder_upper_w(A, u, R, xm, y0, ok);
     const double t = (xm - A.x()) * u.x() + q * u.y() + w * u.z();
-    if (!(ok && t >= 0 && t <= L)) return 0;
+    if (!(ok && t >= -tol::kTrimExtend && t <= L + tol::kTrimExtend)) return 0;
     if (wedge) {
       const Vec3 pa(xm - A.x(), q, w);
       if (pa.dot((*wedge)[0]) > slack || pa.dot((*wedge)[1]) > slack) return 1;

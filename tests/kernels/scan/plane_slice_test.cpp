@@ -195,7 +195,8 @@ TEST(PlaneSlice, SphereThroughCentreIsHalfCircle) {
 }
 
 // An edge along x at height 4, the drive plane at distance d from it: the cylinder gives
-// the line z = 4 + sqrt(R^2 - d^2) over exactly the edge's x range.
+// the line z = 4 + sqrt(R^2 - d^2) over exactly the edge's x range, its caps pushed out by
+// tol::kTrimExtend along the edge.
 TEST(PlaneSlice, CylinderParallelToPlaneIsLine) {
   const auto mesh = one_triangle({0, 0, 4}, {10, 0, 4}, {5, -6, -20});
   const double R = 2, d = 1.2;
@@ -204,8 +205,8 @@ TEST(PlaneSlice, CylinderParallelToPlaneIsLine) {
   for (const SlicePiece& pc : slice_all(el, d))
     if (pc.kind == PieceKind::kCylinderLine) {
       ++lines;
-      EXPECT_NEAR(pc.x0, 0, 1e-12);
-      EXPECT_NEAR(pc.x1, 10, 1e-12);
+      EXPECT_NEAR(pc.x0, -tol::kTrimExtend, 1e-12);
+      EXPECT_NEAR(pc.x1, 10 + tol::kTrimExtend, 1e-12);
       double slope, intercept;
       ASSERT_TRUE(line_of(pc, slope, intercept));
       EXPECT_NEAR(slope, 0, 1e-15);
@@ -269,8 +270,9 @@ TEST(PlaneSlice, CylinderClippedAtEdgeEnd) {
   const OffsetElements el = build_offset_elements(mesh, 1);
   for (const SlicePiece& pc : slice_all(el, 9.5))
     if (pc.kind == PieceKind::kCylinderEllipse && std::abs(pc.dir.x() - pc.dir.y()) < 1e-15) {
-      // End plane x + y = 20 at y = 9.5: x <= 10.5.
-      EXPECT_NEAR(pc.x1, 10.5, 1e-12);
+      // End plane x + y = 20 (pushed out by tol::kTrimExtend along the edge, i.e. x + y =
+      // 20 + sqrt(2) kTrimExtend) at y = 9.5: x <= 10.5 + sqrt(2) kTrimExtend.
+      EXPECT_NEAR(pc.x1, 10.5 + std::sqrt(2.0) * tol::kTrimExtend, 1e-12);
       EXPECT_NEAR(pc.x0, 9.5 - std::sqrt(2.0), 1e-12);
     }
 }

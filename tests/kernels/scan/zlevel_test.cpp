@@ -283,7 +283,7 @@ TriangleMesh one_triangle(const Vec3& a, const Vec3& b, const Vec3& c) {
 TEST(ZLevel, HorizontalFacetGivesRoundedTriangle) {
   const TriangleMesh mesh = one_triangle({0, 0, 0}, {10, 0, 0}, {0, 10, 0});
   const double R = 2, rho = std::sqrt(3.0);
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   const ZLevelResult r = run(el, -1);
   ASSERT_EQ(r.contours.size(), 1u);
   const ZContour& c = r.contours[0];
@@ -338,7 +338,7 @@ TEST(ZLevel, ApexGivesCircle) {
   TriangleMesh mesh{{{0, 0, 5}, {20, 20, 0}, {-20, 20, 0}, {-20, -20, 0}, {20, -20, 0}},
                     {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}, {1, 2, 3}, {1, 3, 4}}};
   const double R = 2, rho = 0.3, dz = R - std::sqrt(R * R - rho * rho);
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   const ZLevelResult r = run(el, 5 - dz);
   ASSERT_EQ(r.contours.size(), 1u);
   const ZContour& c = r.contours[0];
@@ -366,7 +366,7 @@ TEST(ZLevel, VGrooveSharpConcavePoint) {
       {{-10, 0, 10}, {0, 0, 0}, {10, 0, 10}, {-10, 20, 20}, {0, 20, 10}, {10, 20, 20}},
       {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}}};
   const double R = 2, z = 4;
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   const ZLevelResult r = run(el, z);
   ASSERT_EQ(r.contours.size(), 1u);
   const ZContour& c = r.contours[0];
@@ -424,7 +424,7 @@ TEST(ZLevel, BoxPocketHole) {
   mesh.facets.push_back({8, 9, 10});
   mesh.facets.push_back({8, 10, 11});
   const double R = 2, z = -5;
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   const ZLevelResult r = run(el, z);
   ASSERT_EQ(r.contours.size(), 2u);
   const ZContour* outer = r.contours[0].hole ? &r.contours[1] : &r.contours[0];
@@ -484,7 +484,7 @@ TEST(ZLevel, BoxPocketHole) {
 TEST(ZLevel, TiltedFacetClipLine) {
   const TriangleMesh mesh = one_triangle({0, 0, 0}, {10, 0, 2}, {0, 10, 5});
   const double R = 1.5, z = 2;
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   const ZLevelResult r = run(el, z);
   ASSERT_EQ(r.contours.size(), 1u);
   const Vec3 n = Vec3(-2, -5, 10).normalized();
@@ -521,7 +521,7 @@ TEST(ZLevel, TiltedFacetClipLine) {
 TEST(ZLevel, ShortClipLineBetweenFlatEllipses) {
   const double R = 2.5, g = 0.5;  // facet plane z = 1 - g y, V = (0, 0, 1) on top
   const TriangleMesh mesh = one_triangle({0, 0, 1}, {-10, 1, 1 - g}, {10, 1, 1 - g});
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   const Vec3 n = Vec3(0, g, 1).normalized();
   Oracle o(mesh, el);
   std::mt19937_64 rng(8);
@@ -553,7 +553,7 @@ TEST(ZLevel, GrazingClipLineCrossing) {
   const TriangleMesh mesh{
       {{0, 0, 0}, {10, 0, 10 * k}, {5, 5, 5 * k + 5 * s}, {5, -5, 5 * k - 5 * (s - bend)}},
       {{0, 1, 2}, {1, 0, 3}}};
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   Oracle o(mesh, el);
   std::mt19937_64 rng(9);
   for (int l = 0; l < 40; ++l) {
@@ -585,7 +585,7 @@ TEST(ZLevel, StackedWallEdgesShareOneShadow) {
   const std::uint32_t top = 4 * bands;
   mesh.facets.push_back({top, top + 1, top + 2});
   mesh.facets.push_back({top, top + 2, top + 3});
-  const OffsetElements el = build_offset_elements(mesh, R);
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
   Oracle o(mesh, el);
   std::mt19937_64 rng(10);
   for (double z : {1.0, 10.0, 25.0}) {
@@ -613,7 +613,7 @@ TEST(ZLevel, RingRidgeGivesOuterLoopAndHole) {
       mesh.facets.push_back({a, a + 1, a + std::uint32_t(n) + 1});
       mesh.facets.push_back({a, a + std::uint32_t(n) + 1, a + std::uint32_t(n)});
     }
-  const OffsetElements el = build_offset_elements(mesh, 1.5);
+  const OffsetElements el = build_offset_elements(mesh, 1.5, Coplanar::kKeep);
   const ZLevelResult r = run(el, 2);
   ASSERT_EQ(r.contours.size(), 2u);
   const ZContour* outer = r.contours[0].hole ? &r.contours[1] : &r.contours[0];
@@ -635,7 +635,7 @@ TEST(ZLevel, RandomSoupMatchesDropCutter) {
   int checks = 0;
   for (int m = 0; m < 3; ++m) {
     const TriangleMesh mesh = random_soup(rng, 60);
-    const OffsetElements el = build_offset_elements(mesh, 1.25);
+    const OffsetElements el = build_offset_elements(mesh, 1.25, Coplanar::kKeep);
     Oracle o(mesh, el);
     std::uniform_real_distribution<double> rz(-3, 6);
     for (int k = 0; k < 5; ++k)
@@ -649,7 +649,7 @@ TEST(ZLevel, RandomTerrainMatchesDropCutter) {
   int checks = 0;
   for (int m = 0; m < 2; ++m) {
     const TriangleMesh mesh = random_terrain(rng, 11);
-    const OffsetElements el = build_offset_elements(mesh, 1.25);
+    const OffsetElements el = build_offset_elements(mesh, 1.25, Coplanar::kKeep);
     Oracle o(mesh, el);
     std::uniform_real_distribution<double> rz(-1, 5.5);
     for (int k = 0; k < 5; ++k)
@@ -673,7 +673,7 @@ TEST(ZLevel, DegenerateGridTerrainMatchesDropCutter) {
       mesh.facets.push_back({a, a + 1, a + std::uint32_t(n) + 1});
       mesh.facets.push_back({a, a + std::uint32_t(n) + 1, a + std::uint32_t(n)});
     }
-  const OffsetElements el = build_offset_elements(mesh, 1.25);
+  const OffsetElements el = build_offset_elements(mesh, 1.25, Coplanar::kKeep);
   Oracle o(mesh, el);
   int checks = 0;
   for (double z : {-1.25, 0.0, 0.5, 1.0, 1.75, 2.0, 3.0})
@@ -686,7 +686,7 @@ TEST(ZLevel, DegenerateGridTerrainMatchesDropCutter) {
 TEST(ZLevel, CandidateOrderAndFilterDoNotMatter) {
   std::mt19937_64 rng(13);
   const TriangleMesh mesh = random_terrain(rng, 9);
-  const OffsetElements el = build_offset_elements(mesh, 1.0);
+  const OffsetElements el = build_offset_elements(mesh, 1.0, Coplanar::kKeep);
   for (double z : {0.5, 1.7, 2.9}) {
     const ZLevelResult ref = run(el, z);
     ASSERT_FALSE(ref.contours.empty());
