@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "kernels/cleanup/pencil.hpp"
+#include "tests/engine/mesh_test_support.hpp"
 #include "tests/kernels/scan/scan_test_support.hpp"
 
 namespace ncpath {
@@ -37,26 +38,6 @@ TriangleMesh box_pocket() {
               {4, 5, 9}, {4, 9, 8}, {5, 6, 10}, {5, 10, 9}, {6, 7, 11}, {6, 11, 10},
               {7, 4, 8}, {7, 8, 11}};
   return m;
-}
-
-// Brute-force: the ball at every path point and along every chord keeps R from the mesh.
-void expect_no_gouge(const TriangleMesh& mesh, const PencilResult& r, double R) {
-  for (const auto& path : r.paths)
-    for (std::size_t i = 0; i < path.size(); ++i) {
-      const int n = i + 1 < path.size() ? 8 : 1;
-      for (int s = 0; s < n; ++s) {
-        const Vec3 q = i + 1 < path.size() ? Vec3(path[i] + (path[i + 1] - path[i]) * (s / 8.0))
-                                           : path[i];
-        const Vec3 centre = q + Vec3(0, 0, R);
-        double d = INFINITY;
-        for (const auto& f : mesh.facets)
-          d = std::min(d, scan_test::point_triangle_distance(centre, mesh.vertices[f[0]],
-                                                             mesh.vertices[f[1]],
-                                                             mesh.vertices[f[2]]));
-        // 1e-6 mm: the resolution of the engine's check at walls (pencil.hpp).
-        ASSERT_GE(d, R - 1e-6) << "gouge at " << q.transpose();
-      }
-    }
 }
 
 TEST(Pencil, VGrooveAboveAndBelowTheThreshold) {
@@ -85,7 +66,7 @@ TEST(Pencil, VGrooveAboveAndBelowTheThreshold) {
     EXPECT_NEAR(r.stats.traced_length, 20, 1e-6);
     for (const PencilPoint& pt : r.points)
       EXPECT_NEAR(pt.angle * 180 / std::numbers::pi, beta, 1e-6);
-    expect_no_gouge(mesh, r, R);
+    test_meshes::expect_no_gouge(mesh, r.paths, R);
   }
 }
 
@@ -129,7 +110,7 @@ TEST(Pencil, BoxPocketFloorAndCornerCreases) {
   // The floor creases form the square of side 2c; the corners rise (z-levels every 0.3 mm).
   EXPECT_NEAR(floor_length, 8 * c, 1.0);
   EXPECT_GT(corner_length, 4 * 1.0);
-  expect_no_gouge(mesh, r, R);
+  test_meshes::expect_no_gouge(mesh, r.paths, R);
 }
 
 TEST(Pencil, ConvexHemisphereHasNoPencilPath) {
