@@ -25,6 +25,13 @@ std::string validate(const FilletParams& p) {
     os << "scallop must be a positive number of mm when stepover is 0, got " << p.scallop;
   else if (p.max_passes < 1)
     os << "max_passes must be >= 1";
+  else if (!std::isfinite(p.stock))
+    os << "stock must be a finite number of mm, got " << p.stock;
+  else if (p.pencil.stock != 0)
+    os << "pencil.stock must be 0: the fillet's own stock applies to both balls, got "
+       << p.pencil.stock;
+  else if (p.pencil.direction != CutDirection::kAny)
+    os << "pencil.direction must be any: the fillet's own direction orients the passes";
   else if (std::string e = validate(p.pencil); !e.empty())
     os << "pencil: " << e;
   return os.str();
@@ -41,6 +48,7 @@ struct PathOut {
   std::vector<std::vector<Vec3>> polys;
   std::vector<PathKind> kinds;
   std::uint64_t passes = 0, points = 0, rays = 0, misses = 0, unreachable = 0, lifted = 0;
+  std::uint64_t neutral = 0;
   double length = 0;
 };
 
@@ -57,11 +65,19 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
     throw std::invalid_argument("reference_diameter (" + std::to_string(p.reference_diameter) +
                                 " mm) must be larger than the clean-up tool's diameter (" +
                                 std::to_string(2 * r) + " mm)");
+  if (std::string e = validate_stock(p.stock, r); !e.empty()) throw std::invalid_argument(e);
+  // Stock s: the tips of the grown clean-up ball (radius rc) are computed and checked, then
+  // raised by s; the reference run grows its ball itself (its tips are centre - R_ref z).
+  const double s = p.stock, rc = r + s;
+  Cutter grown = cutter;
+  grown.radius = grown.corner_radius = rc;
   FilletResult res;
   FilletStats& st = res.stats;
 
   Stopwatch pencil_clock;
-  const PencilResult ref = run_pencil(mesh, ball_cutter(p.reference_diameter), p.pencil, control);
+  PencilParams pencil = p.pencil;
+  pencil.stock = s;
+  const PencilResult ref = run_pencil(mesh, ball_cutter(p.reference_diameter), pencil, control);
   st.pencil = ref.stats;
   st.pencil_s = pencil_clock.seconds();
   if (control.cancel.load()) throw Cancelled{};
@@ -69,7 +85,7 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
   Stopwatch rays_clock;
   const MeshDistance distance(mesh);
   const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, cutter);
+  const DropIndex index(table, grown);
   const double floor_z = p.pencil.floor_z.value_or(bounding_box(mesh).lo.z());
   const double step =
       p.stepover > 0 ? p.stepover : 2 * std::sqrt(std::max(0.0, 2 * r * p.scallop - p.scallop * p.scallop));
@@ -88,12 +104,12 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
     // Ball centre of the small ball on the ray from the reference centre along -v.
     auto hit = [&](const Vec3& P, const Vec3& v, Vec3& tip) {
       ++out.rays;
-      const std::optional<double> s = distance.march(P, -v, r, 2 * R_ref);
-      if (!s) {
+      const std::optional<double> d = distance.march(P, -v, rc, 2 * (R_ref + s));
+      if (!d) {
         ++out.misses;
         return false;
       }
-      tip = P - *s * v - Vec3(0, 0, r);
+      tip = P - *d * v - Vec3(0, 0, rc);
       if (surface_deficit(index, floor_z, tip) > 1e-7) {  // not reachable from above
         ++out.unreachable;
         return false;
@@ -103,7 +119,8 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
     // Passes: from the step-over (arc length of the centres at the widest point); with a
     // scallop height, doubled until the cusp between neighbouring passes is within it at
     // every 8th point of the path: the cusp tip is where the two balls' spheres meet on the
-    // part's side, and the material left there is its exact distance to the mesh.
+    // part's side, and the material left there is its exact distance to the mesh (less the
+    // stock: the height above the stock surface).
     double widest = 0;
     std::size_t widest_i = 0;
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -141,14 +158,14 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
           const Vec3 vm = turn(b1, t, beta * (j + 0.5) / m);
           if (!hit(P, turn(b1, t, beta * j / m), a) || !hit(P, turn(b1, t, beta * (j + 1) / m), b))
             continue;
-          const Vec3 ca = a + Vec3(0, 0, r), cb = b + Vec3(0, 0, r), mid = 0.5 * (ca + cb);
+          const Vec3 ca = a + Vec3(0, 0, rc), cb = b + Vec3(0, 0, rc), mid = 0.5 * (ca + cb);
           const Vec3 ab = cb - ca;
           const double half = 0.5 * ab.norm();
           if (!(half < r)) return double(INFINITY);  // the balls do not even overlap
           Vec3 d = -vm - ab * (-vm).dot(ab) / ab.squaredNorm();
           if (!(d.norm() > 0)) continue;
           const Vec3 x = mid + d.normalized() * std::sqrt(r * r - half * half);
-          worst = std::max(worst, distance.closest(x, 2 * R_ref).distance);
+          worst = std::max(worst, distance.closest(x, 2 * (R_ref + s)).distance - s);
         }
       }
       return worst;
@@ -156,6 +173,7 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
     if (p.stepover == 0)
       while (n < p.max_passes && worst_cusp(n) > p.scallop) n = std::min(p.max_passes, 2 * n);
     std::vector<std::vector<Vec3>> passes(n + 1);
+    std::vector<std::vector<std::size_t>> from(n + 1);  // the pencil path point of each
     for (std::size_t i = 0; i < pts.size(); ++i) {
       const Vec3 P = pts[i] + Vec3(0, 0, R_ref);
       const Vec3 &b1 = nrm[i][0], &b2 = nrm[i][1];
@@ -164,16 +182,33 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
       if (t.isZero()) continue;
       for (std::uint32_t j = 0; j <= n; ++j) {
         Vec3 tip;
-        if (hit(P, turn(b1, t, beta * j / n), tip)) passes[j].push_back(tip);
+        if (hit(P, turn(b1, t, beta * j / n), tip)) {
+          passes[j].push_back(tip);
+          from[j].push_back(i);
+        }
       }
     }
-    // Zig-zag, linked at depth.
+    // Zig-zag, linked at depth; or one-way, each pass turned to cut in the direction by the
+    // material side of the reference crease, joined by rapids.
+    const bool one_way = p.direction != CutDirection::kAny;
+    std::vector<std::array<Vec3, 2>> side_nrm;
     for (std::uint32_t j = 0; j <= n; ++j) {
       auto& pass = passes[j];
       if (pass.size() < 2) continue;
-      if (j % 2 == 1) std::reverse(pass.begin(), pass.end());
+      bool reverse = j % 2 == 1;
+      if (one_way) {
+        side_nrm.clear();
+        for (std::size_t i : from[j]) side_nrm.push_back(ref.path_normals[k][i]);
+        const int side = cut_side(cut_side_score(pass, side_nrm));
+        if (side == 0) ++out.neutral;
+        reverse = reverse_for(p.direction, side);
+      }
+      if (reverse) std::reverse(pass.begin(), pass.end());
       out.lifted += lift_above_surface(index, floor_z, spacing, pass);
-      if (!out.polys.empty()) {
+      if (!out.polys.empty() && one_way) {
+        out.polys.push_back({pass.front()});
+        out.kinds.push_back(PathKind::kRapid);
+      } else if (!out.polys.empty()) {
         std::vector<Vec3> link = {out.polys.back().back(), pass.front()};
         out.lifted += lift_above_surface(index, floor_z, spacing, link);
         out.polys.push_back(std::move(link));
@@ -185,6 +220,10 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
       out.polys.push_back(std::move(pass));
       out.kinds.push_back(PathKind::kCut);
     }
+    // From the grown ball's tips to the tool's.
+    if (s != 0)
+      for (auto& poly : out.polys)
+        for (Vec3& q : poly) q.z() += s;
   });
   st.rays_s = rays_clock.seconds();
   for (PathOut& o : outs) {
@@ -194,6 +233,7 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
     st.misses += o.misses;
     st.unreachable += o.unreachable;
     st.lifted_points += o.lifted;
+    st.neutral_passes += o.neutral;
     st.cut_length += o.length;
     if (o.polys.empty()) continue;
     if (!res.paths.empty()) {

@@ -41,6 +41,8 @@ std::string validate(const PencilParams& p) {
     os << "margin must be >= 0 mm, got " << p.margin;
   if (os.tellp() == 0 && p.floor_z && !std::isfinite(*p.floor_z))
     os << "floor_z must be a finite number of mm";
+  if (os.tellp() == 0 && !std::isfinite(p.stock))
+    os << "stock must be a finite number of mm, got " << p.stock;
   return os.str();
 }
 
@@ -158,8 +160,10 @@ double polyline_length(const std::vector<Vec3>& p) {
 
 }  // namespace
 
-PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
-                        RunControl& control) {
+// The stages for the ball as given, tool tip = centre - radius z (p.stock is not used:
+// run_pencil below grows the ball by it).
+static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cutter,
+                                     const PencilParams& p, RunControl& control) {
   if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: pencil-cut needs a ball-end mill");
@@ -506,8 +510,25 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
   }
   st.check_s = check_clock.seconds();
 
-  // 5. Order and orient.
-  for (const OrderedPath& o : order_paths(pieces)) {
+  // 5. Order and orient. With a cut direction, pieces with a material side are turned to
+  // cut that way first and keep it; the ordering orients the others.
+  std::vector<std::uint8_t> fixed;
+  if (p.direction != CutDirection::kAny) {
+    fixed.assign(pieces.size(), 0);
+    for (std::size_t k = 0; k < pieces.size(); ++k) {
+      const int side = cut_side(cut_side_score(pieces[k], normals[k]));
+      if (side == 0) {
+        ++st.neutral_paths;
+        continue;
+      }
+      fixed[k] = 1;
+      if (reverse_for(p.direction, side)) {
+        std::reverse(pieces[k].begin(), pieces[k].end());
+        std::reverse(normals[k].begin(), normals[k].end());
+      }
+    }
+  }
+  for (const OrderedPath& o : order_paths(pieces, fixed)) {
     std::vector<Vec3> path = pieces[o.index];
     std::vector<std::array<Vec3, 2>> b = normals[o.index];
     if (o.reversed) {
@@ -520,6 +541,39 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
     res.path_normals.push_back(std::move(b));
   }
   st.paths = res.paths.size();
+  return res;
+}
+
+std::string validate_stock(double stock, double radius) {
+  std::ostringstream os;
+  if (!std::isfinite(stock))
+    os << "stock must be a finite number of mm, got " << stock;
+  else if (!(stock > -radius))
+    os << "stock must be greater than minus the ball radius (-" << radius
+       << " mm): the ball's centre runs R + stock from the part, got " << stock;
+  return os.str();
+}
+
+// Stock s: the stages for the ball of radius R + s (the same centres), tips raised by s.
+PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
+                        RunControl& control) {
+  if (p.stock == 0) return run_pencil_exact(mesh, cutter, p, control);
+  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
+  if (cutter.type != CutterType::kBall)
+    throw std::invalid_argument("tool: pencil-cut needs a ball-end mill");
+  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
+  if (std::string e = validate_stock(p.stock, cutter.radius); !e.empty())
+    throw std::invalid_argument(e);
+  Cutter grown = cutter;
+  grown.radius = cutter.radius + p.stock;
+  grown.corner_radius = grown.radius;
+  PencilParams exact = p;
+  exact.stock = 0;
+  PencilResult res = run_pencil_exact(mesh, grown, exact, control);
+  const Vec3 up(0, 0, p.stock);
+  for (auto& path : res.paths)
+    for (Vec3& q : path) q += up;
+  for (PencilPoint& pt : res.points) pt.position += up;
   return res;
 }
 

@@ -22,7 +22,16 @@
 //      gouges;
 //   5. pieces closer than `merge_distance` end to end are joined, pieces shorter than
 //      `min_length` dropped, and the rest ordered and oriented greedily to shorten the air
-//      moves between them.
+//      moves between them. With a cut `direction` (climb or conventional, spindle M3:
+//      kernels/cleanup/cut_direction.hpp) every piece with a material side is first turned
+//      to run that way and the ordering keeps it; pieces without one (a symmetric V-groove,
+//      a vertical corner) keep the orientation the ordering gives them.
+// Stock to leave. With `stock` s the tool keeps s from the part everywhere: its centre runs
+// on the offset surface at distance R + s. The stages above run for a ball of radius R + s
+// (whose centre is the same) and every output point (paths, pencil points) is raised by s,
+// the tool tip being centre - R z. s may be negative, down to > -R. The floor is treated
+// like the part: the grown ball's tip rests on it (z = floor_z), so with stock the tool tip
+// stays at least floor_z + s.
 // Output: one cut path per piece (tool tip, mm), a rapid before every piece but the first,
 // and the pencil points with their bi-contact vectors and angle.
 #include <array>
@@ -34,6 +43,7 @@
 
 #include "engine/cl_chunk.hpp"
 #include "engine/run_control.hpp"
+#include "kernels/cleanup/cut_direction.hpp"
 #include "kernels/cutters/cutter.hpp"
 #include "kernels/geom/vec.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
@@ -48,11 +58,20 @@ struct PencilParams {
   double merge_distance = 0;    // mm; 0: 2 * interval
   double min_length = 1.0;      // mm: shorter pieces are dropped
   double margin = 0;            // mm around the part's xy box (scanned rectangle)
-  std::optional<double> floor_z;  // mm; default: the part's lowest z
+  // mm: a plane below the part where the grown ball (R + stock) rests, tool tip z of that
+  // ball; the tool tip stays at least floor_z + stock. Default: the part's lowest z.
+  std::optional<double> floor_z;
+  double stock = 0;  // mm the tool keeps from the part (and the floor); > -R, see above
+  CutDirection direction = CutDirection::kAny;  // kAny: oriented for short air moves only
 };
 
-// Empty when usable; else a message naming the bad key.
+// Empty when usable; else a message naming the bad key. (The stock's lower bound depends on
+// the ball: validate_stock.)
 std::string validate(const PencilParams& params);
+
+// Empty when stock (mm) is usable with a ball of radius R (mm): finite and > -R; else a
+// message naming the key "stock".
+std::string validate_stock(double stock, double radius);
 
 struct PencilPoint {
   Vec3 position = Vec3::Zero();  // tool tip, mm
@@ -72,9 +91,12 @@ struct PencilStats {
   std::uint64_t lifted_points = 0;   // path points raised by the drop-cutter check
   std::uint64_t split_chords = 0;    // chords that left the crease (pieces split there)
   std::uint64_t paths = 0;           // pieces cut
+  std::uint64_t neutral_paths = 0;   // with a cut direction: pieces without a material side
+                                     // (oriented by the ordering); 0 with kAny
   double traced_length = 0;          // mm, cut length of the pieces
   double air_length = 0;             // mm, straight distance between consecutive pieces
   double elements_s = 0, scan_s = 0, zlevel_s = 0, link_s = 0, refine_s = 0, check_s = 0;
+  double index_s = 0;  // the drop-cutter and distance indexes (refinement and check)
 };
 
 struct PencilResult {
@@ -86,7 +108,8 @@ struct PencilResult {
   PencilStats stats;
 };
 
-// The cutter must be a ball. Throws Cancelled, std::invalid_argument for bad params.
+// The cutter must be a ball (radius R). Throws Cancelled, std::invalid_argument for bad
+// params (a stock <= -R included).
 PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& params,
                         RunControl& control);
 

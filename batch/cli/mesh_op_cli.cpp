@@ -42,6 +42,28 @@ void add_pencil_options(CLI::App* c, PencilParams& params, std::optional<double>
                 "Height where the tool touches nothing (mm); default: the part's lowest z");
 }
 
+// --stock and --direction: the pencil command's, and the fillet command's own.
+void add_stock_direction(CLI::App* c, double& stock, std::string& direction, const char* stock_what,
+                         const char* any_what) {
+  c->add_option("--stock", stock,
+                std::string("Material left on the part (mm), > -D/2: ") + stock_what +
+                    " this far from it everywhere")
+      ->capture_default_str();
+  c->add_option("--direction", direction,
+                std::string("Cut direction, spindle clockwise (M3): climb (the material on the "
+                            "right of travel), conventional (on the left), or any (") +
+                    any_what + ")")
+      ->check(CLI::IsMember({"any", "climb", "conventional"}))
+      ->capture_default_str();
+}
+
+// The job's direction from --direction, then its parameters' first problem: "" or the
+// problem, starting with the key's name.
+std::string direction_then(const std::string& text, CutDirection& out, const std::string& rest) {
+  if (std::string e = jobs::parse_direction(text, out); !e.empty()) return "direction " + e;
+  return rest;
+}
+
 }  // namespace
 
 ZLevelCommand::ZLevelCommand(CLI::App& app) {
@@ -84,13 +106,16 @@ PencilCommand::PencilCommand(CLI::App& app) {
       "where the ball touches two surfaces at once",
       common_, gcode_);
   add_pencil_options(cmd_, params_, floor_z_);
+  add_stock_direction(cmd_, params_.stock, direction_, "the ball keeps",
+                      "oriented for short moves between the paths");
 }
 
 void PencilCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
   jobs::JobSpec j = job_from(common_, jobs::Operation::kPencil);
   j.pencil = params_;
   j.pencil.floor_z = floor_z_;
-  const std::string e = validate(j.pencil);
+  const std::string e =
+      direction_then(direction_, j.pencil.direction, jobs::validate_pencil(j.pencil, j.tool));
   add_mesh_job(common_, gcode_, std::move(j), e, batch, quiet);
 }
 
@@ -115,6 +140,9 @@ FilletCommand::FilletCommand(CLI::App& app) {
                      ->capture_default_str();
   cmd_->add_option("--max-passes", params_.max_passes, "Most passes per pencil path")
       ->capture_default_str();
+  add_stock_direction(cmd_, params_.stock, direction_, "both balls (tool and reference) keep",
+                      "zig-zag passes linked at depth; climb and conventional cut one-way "
+                      "passes joined by rapids");
   add_pencil_options(cmd_, params_.pencil, floor_z_);
 }
 
@@ -134,7 +162,8 @@ void FilletCommand::add_job(jobs::BatchSpec& batch, bool& quiet) const {
     j.error = e;
     j.error_status = "invalid_parameter";
   }
-  const std::string v = jobs::validate_fillet(j.fillet);
+  const std::string v =
+      direction_then(direction_, j.fillet.direction, jobs::validate_fillet(j.fillet, j.tool));
   add_mesh_job(common_, gcode_, std::move(j), v, batch, quiet);
 }
 

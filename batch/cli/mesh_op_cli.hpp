@@ -32,7 +32,7 @@ class ZLevelCommand {
 };
 
 // ncpath pencil --mesh M --tool ball:D [--interval --step-down --min-angle --tolerance
-// --merge-distance --min-length --margin --floor-z]
+// --merge-distance --min-length --margin --floor-z --stock --direction]
 class PencilCommand {
  public:
   explicit PencilCommand(CLI::App& app);
@@ -47,10 +47,12 @@ class PencilCommand {
   GcodeCli gcode_;
   PencilParams params_;
   std::optional<double> floor_z_;
+  std::string direction_ = "any";
 };
 
 // ncpath fillet --mesh M --tool ball:d --reference ball:D [--stepover S | --scallop H]
-// [--max-passes N] [the pencil options, for the reference ball's pencil run]
+// [--max-passes N] [--stock --direction] [the pencil options, for the reference ball's pencil
+// run]
 class FilletCommand {
  public:
   explicit FilletCommand(CLI::App& app);
@@ -67,6 +69,7 @@ class FilletCommand {
   std::string reference_;
   FilletParams params_;
   std::optional<double> floor_z_;
+  std::string direction_ = "any";
 };
 
 }  // namespace ncpath::cli

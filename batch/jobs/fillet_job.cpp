@@ -20,6 +20,7 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
       {"misses", i64(st.misses), ""},
       {"unreachable", i64(st.unreachable), ""},
       {"lifted_points", i64(st.lifted_points), ""},
+      {"neutral_passes", i64(st.neutral_passes), ""},
       {"cut_length", st.cut_length, "mm"},
       {"pencil_s", st.pencil_s, "s"},
       {"rays_s", st.rays_s, "s"},

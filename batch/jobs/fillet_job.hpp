@@ -5,8 +5,9 @@
 // transformed by the job runner; this runs the engine (not streamed: the passes of a crease
 // are known only once its reference pencil path is) and writes
 //   - the CL paths (per reference pencil path: its passes as cut paths, zig-zag, joined by
-//     links at depth; a one-point rapid path before every pencil path's first pass but the
-//     first) to cl/, and to the G-code writer when there is one;
+//     links at depth, or with a cut direction one-way, joined by one-point rapid paths; a
+//     one-point rapid path before every pencil path's first pass but the first) to cl/, and
+//     to the G-code writer when there is one;
 //   - every FilletStats field as a statistic, the reference pencil run's prefixed
 //     `reference_`.
 #include <cstdint>

@@ -428,9 +428,9 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     if (pk.error.empty() && job.operation == Operation::kZLevel)
       if (std::string e = validate(job.zlevel); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPencil)
-      if (std::string e = validate(job.pencil); !e.empty()) pk.fail("", e);
+      if (std::string e = validate_pencil(job.pencil, job.tool); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kFillet)
-      if (std::string e = validate_fillet(job.fillet); !e.empty()) pk.fail("", e);
+      if (std::string e = validate_fillet(job.fillet, job.tool); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kOffset)
       if (std::string e = validate(job.offset); !e.empty()) pk.fail("", e);
     if (pk.error.empty() && job.operation == Operation::kPocket)

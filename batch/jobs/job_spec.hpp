@@ -173,9 +173,17 @@ std::string parse_fillet_reference(const std::string& text, const Cutter& tool,
 std::string check_fillet_spacing(bool has_scallop, const FilletParams& params,
                                  const std::string& stepover_key, const std::string& scallop_key);
 // validate(FilletParams) with the pencil keys' messages as the other keys' ("interval must be
-// ...", not "pencil: interval must be ..."): a job's keys are one flat table. ""
+// ...", not "pencil: interval must be ..."): a job's keys are one flat table; then, when the
+// tool is a ball (another shape is the engine's to refuse, at run time), the stock against
+// its radius (validate_stock). "" when usable. (In mesh_op_params.cpp.)
+std::string validate_fillet(const FilletParams& params, const Cutter& tool);
+// validate(PencilParams), then the stock against the tool's radius when it is a ball. ""
 // when usable. (In mesh_op_params.cpp.)
-std::string validate_fillet(const FilletParams& params);
+std::string validate_pencil(const PencilParams& params, const Cutter& tool);
+// "any" / "climb" / "conventional" -> the cut direction of pencil and fillet jobs; "" or an
+// error to follow the key's name ("must be \"any\", \"climb\" or \"conventional\", got
+// \"up\""). (In mesh_op_params.cpp.)
+std::string parse_direction(const std::string& text, CutDirection& out);
 
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);

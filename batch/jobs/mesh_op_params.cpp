@@ -40,7 +40,11 @@ void parse_zlevel_params(Keys& k, ZLevelOpParams& p) {
         check_zlevel_choice(has_levels, has_step_down, p, "'params.levels'", "'params.step_down'");
 }
 
-void parse_pencil_params(Keys& k, PencilParams& p) {
+namespace {
+
+// The keys that say how pencil paths are found: a pencil job's, and a fillet job's for its
+// reference run.
+void parse_pencil_search(Keys& k, PencilParams& p) {
   k.number("interval", p.interval);
   k.number("step_down", p.step_down);
   k.number("min_angle", p.min_angle_deg);
@@ -50,6 +54,37 @@ void parse_pencil_params(Keys& k, PencilParams& p) {
   k.number("margin", p.margin);
   double floor_z;
   if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
+}
+
+// stock and direction: a pencil job's, or a fillet job's own.
+void parse_stock_direction(Keys& k, double& stock, CutDirection& direction) {
+  k.number("stock", stock);
+  std::string text;
+  if (k.string("direction", text))
+    if (std::string e = parse_direction(text, direction); !e.empty()) k.fail("direction", e);
+}
+
+void pencil_search_json(const PencilParams& p, nlohmann::ordered_json& j) {
+  j["interval"] = p.interval;
+  j["step_down"] = p.step_down;
+  j["min_angle"] = p.min_angle_deg;
+  j["tolerance"] = p.tolerance;
+  j["merge_distance"] = p.merge_distance;
+  j["min_length"] = p.min_length;
+  j["margin"] = p.margin;
+  j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+std::string parse_direction(const std::string& text, CutDirection& out) {
+  if (parse_cut_direction(text, out)) return "";
+  return "must be \"any\", \"climb\" or \"conventional\", got \"" + text + "\"";
+}
+
+void parse_pencil_params(Keys& k, PencilParams& p) {
+  parse_pencil_search(k, p);
+  parse_stock_direction(k, p.stock, p.direction);
 }
 
 std::string parse_fillet_reference(const std::string& text, const Cutter& tool, FilletParams& p) {
@@ -77,10 +112,17 @@ std::string check_fillet_spacing(bool has_scallop, const FilletParams& p,
   return "";
 }
 
-std::string validate_fillet(const FilletParams& p) {
+std::string validate_fillet(const FilletParams& p, const Cutter& tool) {
   std::string e = validate(p);
   const std::string nested = "pencil: ";
   if (e.rfind(nested, 0) == 0) e.erase(0, nested.size());
+  if (e.empty() && tool.type == CutterType::kBall) e = validate_stock(p.stock, tool.radius);
+  return e;
+}
+
+std::string validate_pencil(const PencilParams& p, const Cutter& tool) {
+  std::string e = validate(p);
+  if (e.empty() && tool.type == CutterType::kBall) e = validate_stock(p.stock, tool.radius);
   return e;
 }
 
@@ -99,7 +141,8 @@ void parse_fillet_params(Keys& k, const Cutter& tool, FilletParams& p,
     else
       k.fail("max_passes", "must be a whole number >= 1");
   }
-  parse_pencil_params(k, p.pencil);
+  parse_pencil_search(k, p.pencil);
+  parse_stock_direction(k, p.stock, p.direction);
   if (k.error.empty())
     k.error = check_fillet_spacing(has_scallop, p, "'params.stepover'", "'params.scallop'");
 }
@@ -114,14 +157,9 @@ void zlevel_params_json(const ZLevelOpParams& p, nlohmann::ordered_json& j) {
 }
 
 void pencil_params_json(const PencilParams& p, nlohmann::ordered_json& j) {
-  j["interval"] = p.interval;
-  j["step_down"] = p.step_down;
-  j["min_angle"] = p.min_angle_deg;
-  j["tolerance"] = p.tolerance;
-  j["merge_distance"] = p.merge_distance;
-  j["min_length"] = p.min_length;
-  j["margin"] = p.margin;
-  j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
+  pencil_search_json(p, j);
+  j["stock"] = p.stock;
+  j["direction"] = cut_direction_name(p.direction);
 }
 
 void fillet_params_json(const FilletParams& p, const std::string& reference_text,
@@ -131,7 +169,9 @@ void fillet_params_json(const FilletParams& p, const std::string& reference_text
   j["stepover"] = p.stepover;
   j["scallop"] = p.scallop;
   j["max_passes"] = p.max_passes;
-  pencil_params_json(p.pencil, j);
+  pencil_search_json(p.pencil, j);
+  j["stock"] = p.stock;
+  j["direction"] = cut_direction_name(p.direction);
 }
 
 }  // namespace ncpath::jobs

@@ -16,10 +16,11 @@ namespace ncpath::jobs {
 // chunk_levels. The first problem lands in k.error, named by its key.
 void parse_zlevel_params(Keys& k, ZLevelOpParams& p);
 // pencil: interval, step_down, min_angle (degrees), tolerance, merge_distance, min_length,
-// margin, floor_z.
+// margin, floor_z, stock, direction.
 void parse_pencil_params(Keys& k, PencilParams& p);
 // fillet: reference (required, a ball larger than `tool`, the job's own), stepover, scallop,
-// max_passes, and the pencil keys of the reference run. reference_text: as written.
+// max_passes, stock and direction (FilletParams' own), and the other pencil keys of the
+// reference run (into p.pencil). reference_text: as written.
 void parse_fillet_params(Keys& k, const Cutter& tool, FilletParams& p, std::string& reference_text);
 
 // Adds the operation's keys to j.

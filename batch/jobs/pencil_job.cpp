@@ -58,6 +58,7 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
       {"refined_points", i64(st.refined_points), ""},
       {"lifted_points", i64(st.lifted_points), ""},
       {"paths", i64(st.paths), ""},
+      {"neutral_paths", i64(st.neutral_paths), ""},
       {"traced_length", st.traced_length, "mm"},
       {"air_length", st.air_length, "mm"},
       {"elements_s", st.elements_s, "s"},

@@ -3,8 +3,9 @@
 // mesh with a ball-end mill (engine/pencil.hpp). The mesh is read and transformed by the job
 // runner; this runs the engine (not streamed: the paths are known only once every crease is
 // traced, refined, checked and ordered) and writes
-//   - the CL paths (one cut path per crease piece, a one-point rapid path before every piece
-//     but the first) to cl/, and to the G-code writer when there is one;
+//   - the CL paths (one cut path per crease piece, oriented for the cut direction when one is
+//     given, a one-point rapid path before every piece but the first; tool tips, raised by
+//     the stock) to cl/, and to the G-code writer when there is one;
 //   - every pencil point (a sharp-concave junction whose bi-contact angle reaches min_angle)
 //     with its bi-contact vectors, angle, family and whether it was traced, group `pencil`
 //     (layout in docs/hdf5-schema.md);

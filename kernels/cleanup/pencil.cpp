@@ -107,7 +107,8 @@ std::vector<std::vector<std::uint32_t>> link_layers(std::span<const PencilCandid
   return chains;
 }
 
-std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths) {
+std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths,
+                                     std::span<const std::uint8_t> fixed) {
   std::vector<OrderedPath> out;
   if (paths.empty()) return out;
   std::vector<bool> used(paths.size(), false);
@@ -124,7 +125,7 @@ std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths) {
         best = d0;
         pick = {i, false};
       }
-      if (d1 < best) {
+      if (d1 < best && !(i < fixed.size() && fixed[i])) {
         best = d1;
         pick = {i, true};
       }

@@ -73,12 +73,15 @@ std::vector<std::vector<std::uint32_t>> link_layers(std::span<const PencilCandid
 
 // Greedy ordering of polylines to shorten the air moves between them: start with the first
 // polyline, then repeatedly take the nearest remaining end (reversing the polyline when its
-// last point is nearer). Returns (index, reversed) pairs.
+// last point is nearer). `fixed`: empty (every polyline may be reversed), or one flag per
+// polyline, 1 for those that keep their direction (only their first point is a candidate:
+// a path oriented for its cut direction). Returns (index, reversed) pairs.
 struct OrderedPath {
   std::uint32_t index = 0;
   bool reversed = false;
 };
-std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths);
+std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths,
+                                     std::span<const std::uint8_t> fixed = {});
 
 // Joins polylines whose ends are within `merge_distance` (mm) and whose end directions agree
 // (cos >= min_cos), repeatedly, in a deterministic order; drops the results shorter than

@@ -282,4 +282,12 @@ inline constexpr double kZLevelFlatArc = 1e-10;
 // z-level contours: the sides of its capsule are straight.
 inline constexpr double kZLevelFlatSlope = 1e-12;
 
+// ---- Clean-up paths (kernels/cleanup/*) ----
+
+// Dimensionless (mean lateral component of a crease's material vector along a path). A path
+// whose cut-side score is within this times its xy length of 0 has no material side: a
+// symmetric V-groove (b1 + b2 vertical to rounding, ~1e-16) or a vertical corner (no xy
+// travel). Such a path is cut climb and conventional alike and keeps its orientation.
+inline constexpr double kCutSideNeutral = 1e-6;
+
 }  // namespace ncpath::tol

@@ -4,7 +4,9 @@
 // clean-up passes puts the small ball's centre at distance r = 1.5 from the groove (computed
 // analytically, not from the mesh), the passes sweep from one reference contact to the other,
 // linked at depth; every statistic with its unit; G-code; identical datasets for 1 and 2
-// threads; the problems a user can make, named.
+// threads; the problems a user can make, named. With --stock s and --direction climb the
+// centres lie r + s from the groove and the passes run one way, joined by one-point rapids
+// (the groove is symmetric: no material side, every pass along its pencil path).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -162,6 +164,53 @@ TEST(FilletCli, PassesTouchTheFilletedGrooveFromContactToContact) {
   EXPECT_NE(g.find("M2"), std::string::npos);
 }
 
+TEST(FilletCli, StockAndDirection) {
+  const auto dir = scan_cli::fixture_dir("fillet_stock");
+  write_filleted_groove(dir / "groove.off");
+  const double s = 0.3;
+  const CmdResult r = ncpath("fillet --mesh " + (dir / "groove.off").string() +
+                             " --tool ball:3 --reference ball:10 --stepover 0.4 --interval 0.5 "
+                             "--step-down 0 --stock 0.3 --direction climb --quiet --out " +
+                             (dir / "s.h5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "s.h5");
+  h5::Id job(H5Gopen2(f, "/jobs/fillet", H5P_DEFAULT));
+  ASSERT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
+  const std::string params = h5::attr_str(job, "params");
+  for (const char* p : {"\"stock\":0.3", "\"direction\":\"climb\""})
+    EXPECT_NE(params.find(p), std::string::npos) << p << " in " << params;
+
+  // One pencil path: passes (0) joined by one-point rapids (2) to the next pass's start.
+  const ClOut cl = read_cl(f, "fillet");
+  ASSERT_GE(cl.cut_paths.size(), 3u);
+  EXPECT_EQ(cl.kind.size() % 2, 1u);
+  for (std::size_t k = 0; k < cl.kind.size(); ++k) {
+    ASSERT_EQ(cl.kind[k], k % 2 == 0 ? 0 : 2) << k;
+    if (k % 2 == 0) continue;
+    ASSERT_EQ(cl.off[k + 1] - cl.off[k], 1);
+    EXPECT_EQ(cl.point(std::size_t(cl.off[k])), cl.point(std::size_t(cl.off[k + 1])));
+  }
+  // Every pass: the centre r + s from the groove (away from its ends), and all running the
+  // same way along y (one way, as their pencil path).
+  int towards = 0;
+  for (const std::size_t p : cl.cut_paths) {
+    const auto a = std::size_t(cl.off[p]), b = std::size_t(cl.off[p + 1]);
+    ASSERT_GE(b - a, 2u);
+    const int dir_y = cl.point(b - 1)[1] > cl.point(a)[1] ? 1 : -1;
+    if (towards == 0) towards = dir_y;
+    EXPECT_EQ(dir_y, towards) << "pass " << p;
+    for (std::size_t i = a; i < b; ++i) {
+      const Row q = cl.point(i);
+      if (std::abs(q[1]) >= 6) continue;
+      ASSERT_NEAR(groove_distance(q[0], q[2] + kr), kr + s, 1e-6) << "point " << i;
+    }
+  }
+  const scan_cli::Stats st{f, "fillet"};
+  EXPECT_EQ(st["passes"], double(cl.cut_paths.size()));
+  EXPECT_EQ(st["neutral_passes"], st["passes"]);  // symmetric groove: no material side
+  EXPECT_EQ(st.unit("neutral_passes"), "");
+}
+
 // The raw bytes of a dataset, read in its own (native) type.
 std::vector<unsigned char> raw(hid_t f, const std::string& path) {
   h5::Id ds(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "open " + path);
@@ -257,6 +306,15 @@ TEST(FilletCli, ProblemsAreNamed) {
                  "--interval must be a positive number of mm, got 0");
   expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --min-angle 200",
                  "--min-angle must be between 0 and 180 degrees, got 200");
+  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --stock -1.5",
+                 "--stock must be greater than minus the ball radius (-1.5 mm)");
+  // CLI11 refuses a direction that is not one of the three before anything runs, naming it.
+  const CmdResult d = ncpath("fillet " + mesh +
+                             " --tool ball:3 --reference ball:10 --direction zigzag --quiet "
+                             "--out " +
+                             (dir / "d.h5").string());
+  EXPECT_NE(d.exit_code, 0);
+  EXPECT_NE(d.output.find("--direction"), std::string::npos) << d.output;
   // Without --reference CLI11 refuses the command line before anything runs, naming it.
   const CmdResult r =
       ncpath("fillet " + mesh + " --tool ball:3 --quiet --out " + (dir / "x.h5").string());
@@ -314,7 +372,7 @@ TEST(FilletCli, HelpDocumentsEveryOption) {
         "--max-passes",     "--interval",   "--step-down", "--min-angle", "--tolerance",
         "--merge-distance", "--min-length", "--margin",    "--floor-z",   "--out",
         "--name",           "--threads",    "--fit-xy",    "--quiet",     "--gcode",
-        "--safe-z",         "ball"})
+        "--safe-z",         "ball",         "--stock",     "--direction", "conventional"})
     EXPECT_NE(h.output.find(s), std::string::npos) << s;
   EXPECT_NE(ncpath("--help").output.find("fillet"), std::string::npos);
 }

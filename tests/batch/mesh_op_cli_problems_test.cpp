@@ -125,6 +125,13 @@ TEST(MeshOpCli, ProblemsAreNamed) {
                  "--interval must be a positive number of mm, got 0");
   expect_failure(dir, "pencil", mesh + " --tool ball:4 --merge-distance -1",
                  "--merge-distance must be >= 0 mm");
+  expect_failure(dir, "pencil", mesh + " --tool ball:4 --stock -2",
+                 "--stock must be greater than minus the ball radius (-2 mm)");
+  // CLI11 refuses a direction that is not one of the three before anything runs, naming it.
+  const CmdResult d = ncpath("pencil " + mesh + " --tool ball:4 --direction down --quiet --out " +
+                             (dir / "d.h5").string());
+  EXPECT_NE(d.exit_code, 0);
+  EXPECT_NE(d.output.find("--direction"), std::string::npos) << d.output;
   // CLI11 refuses a level that is not a number before anything runs, naming the option.
   const CmdResult r =
       ncpath("zlevel " + mesh + " --levels 1,x --quiet --out " + (dir / "x.h5").string());
@@ -158,6 +165,12 @@ input = "groove.off"
 tool = "ball:4"
 params = { min_angle = 200 }
 [[job]]
+name = "pencil-direction"
+operation = "pencil"
+input = "groove.off"
+tool = "ball:4"
+params = { direction = "sideways" }
+[[job]]
 name = "zlevel-good"
 operation = "zlevel"
 input = "groove.off"
@@ -172,13 +185,15 @@ params = { interval = 2, step_down = 0 }
 )";
   const CmdResult b = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
   EXPECT_EQ(b.exit_code, 1) << b.output;
-  EXPECT_NE(b.output.find("6 job(s), 2 ok, 4 failed"), std::string::npos) << b.output;
+  EXPECT_NE(b.output.find("7 job(s), 2 ok, 5 failed"), std::string::npos) << b.output;
   h5::Id f = h5::open_read(dir / "batch.h5");
   const std::pair<const char*, const char*> want[] = {
       {"zlevel-flat", "z-level contouring needs a ball-end mill"},
       {"zlevel-both", "'params.levels' and 'params.step_down' are both given"},
       {"pencil-flat", "pencil-cut needs a ball-end mill"},
       {"pencil-angle", "min_angle must be between 0 and 180 degrees, got 200"},
+      {"pencil-direction",
+       "'params.direction' must be \"any\", \"climb\" or \"conventional\", got \"sideways\""},
   };
   for (const auto& [name, message] : want) {
     h5::Id job(H5Gopen2(f, (std::string("/jobs/") + name).c_str(), H5P_DEFAULT));
@@ -206,8 +221,9 @@ TEST(MeshOpCli, HelpDocumentsEveryOption) {
   EXPECT_EQ(p.exit_code, 0);
   for (const char* s :
        {"--mesh", "--tool", "--interval", "--step-down", "--min-angle", "--tolerance",
-        "--merge-distance", "--min-length", "--margin", "--floor-z", "--out", "--name", "--threads",
-        "--fit-xy", "--quiet", "--gcode", "--safe-z", "ball"})
+        "--merge-distance", "--min-length", "--margin", "--floor-z", "--stock", "--direction",
+        "climb", "conventional", "--out", "--name", "--threads", "--fit-xy", "--quiet", "--gcode",
+        "--safe-z", "ball"})
     EXPECT_NE(p.output.find(s), std::string::npos) << s;
   const std::string top = ncpath("--help").output;
   EXPECT_NE(top.find("zlevel"), std::string::npos);

@@ -1,7 +1,9 @@
 // The pencil command and the pencil job end to end (issue 6): a ball in a V-groove z = |x|
 // (bi-contact angle 90 degrees) gives one path along the groove's floor at the analytic height
 // R (sqrt 2 - 1) and pencil points with the flanks' normals; with a threshold above 90 degrees
-// it gives none; every statistic with its unit, G-code.
+// it gives none; every statistic with its unit, G-code. With --stock s the path and the
+// pencil points are at the height of a ball of radius R + s, plus s; --direction is recorded
+// and the groove, symmetric, has no material side (neutral_paths 1).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,6 +122,41 @@ TEST(PencilCli, AVGrooveGivesOnePathAlongItsFloor) {
   const std::string g = slurp(dir / "g.ngc");
   EXPECT_NE(g.find("G0 Z15.0000"), std::string::npos);
   EXPECT_NE(g.find("M2"), std::string::npos);
+}
+
+TEST(PencilCli, StockAndDirection) {
+  const auto dir = scan_cli::fixture_dir("pencil_stock");
+  scan_cli::write_off(dir / "groove.off", scan_cli::groove(false));
+  const double s = 0.3;
+  const CmdResult r = ncpath("pencil --mesh " + (dir / "groove.off").string() +
+                             " --tool ball:4 --interval 0.5 --step-down 0 --stock 0.3 "
+                             "--direction climb --quiet --out " +
+                             (dir / "s.h5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "s.h5");
+  h5::Id job(H5Gopen2(f, "/jobs/pencil", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
+  const std::string params = h5::attr_str(job, "params");
+  for (const char* p : {"\"stock\":0.3", "\"direction\":\"climb\""})
+    EXPECT_NE(params.find(p), std::string::npos) << p << " in " << params;
+  // The centre of the ball of radius R + s in the 90-degree groove is (R + s) sqrt 2 above
+  // its floor; the tool tip R below the centre.
+  const double tip = (kR + s) * std::sqrt(2.0) - kR;
+  const ClOut cl = read_cl(f, "pencil");
+  ASSERT_EQ(cl.kind.size(), 1u);
+  ASSERT_GE(cl.pts.size(), 6u);
+  for (std::size_t i = 0; i < cl.pts.size() / 3; ++i) {
+    EXPECT_NEAR(cl.point(i)[0], 0, 1e-9) << i;
+    EXPECT_NEAR(cl.point(i)[2], tip, 1e-9) << i;
+  }
+  const PencilOut p = read_pencil(f, "pencil");
+  ASSERT_EQ(p.angle.size(), 41u);
+  for (std::size_t i = 0; i < p.angle.size(); ++i) EXPECT_NEAR(row(p.position, i)[2], tip, 1e-9);
+  const scan_cli::Stats st{f, "pencil"};
+  EXPECT_EQ(st["paths"], 1);
+  EXPECT_EQ(st["neutral_paths"], 1);  // symmetric: no material side, climb or not
+  EXPECT_EQ(st.unit("neutral_paths"), "");
+  EXPECT_NEAR(st["traced_length"], 20, 1e-6);
 }
 
 TEST(PencilCli, AThresholdAboveTheGroovesAngleGivesNoPath) {

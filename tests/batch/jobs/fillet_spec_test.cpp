@@ -20,7 +20,7 @@ TEST(FilletSpec, ParsesEveryKey) {
       "transform = { fit_xy = 150 }\n"
       "params = { reference = \"ball:8\", stepover = 0.3, max_passes = 12, interval = 2, "
       "step_down = 0, min_angle = 35, tolerance = 0.02, merge_distance = 3, min_length = 0.5, "
-      "margin = 1.5, floor_z = -4 }");
+      "margin = 1.5, floor_z = -4, stock = 0.2, direction = \"conventional\" }");
   ASSERT_EQ(j.error, "");
   EXPECT_EQ(j.operation, Operation::kFillet);
   EXPECT_STREQ(operation_name(j.operation), "fillet");
@@ -40,6 +40,11 @@ TEST(FilletSpec, ParsesEveryKey) {
   EXPECT_EQ(p.pencil.margin, 1.5);
   ASSERT_TRUE(p.pencil.floor_z.has_value());
   EXPECT_EQ(*p.pencil.floor_z, -4);
+  // stock and direction are the fillet's own, not its reference run's.
+  EXPECT_EQ(p.stock, 0.2);
+  EXPECT_EQ(p.direction, CutDirection::kConventional);
+  EXPECT_EQ(p.pencil.stock, 0);
+  EXPECT_EQ(p.pencil.direction, CutDirection::kAny);
   // The job's pencil params (the pencil operation's) are untouched.
   EXPECT_EQ(j.pencil.interval, PencilParams{}.interval);
   const std::string json = params_json(j);
@@ -47,7 +52,7 @@ TEST(FilletSpec, ParsesEveryKey) {
        {"\"operation\":\"fillet\"", "\"reference\":\"ball:8\"", "\"reference_diameter\":8.0",
         "\"stepover\":0.3", "\"max_passes\":12", "\"interval\":2.0", "\"step_down\":0.0",
         "\"min_angle\":35.0", "\"tolerance\":0.02", "\"merge_distance\":3.0", "\"min_length\":0.5",
-        "\"margin\":1.5", "\"floor_z\":-4.0"})
+        "\"margin\":1.5", "\"floor_z\":-4.0", "\"stock\":0.2", "\"direction\":\"conventional\""})
     EXPECT_NE(json.find(s), std::string::npos) << s << " in " << json;
 }
 
@@ -65,10 +70,13 @@ TEST(FilletSpec, DefaultsAreTheEngines) {
   EXPECT_EQ(p.pencil.tolerance, 0.01);
   EXPECT_EQ(p.pencil.min_length, 1.0);
   EXPECT_FALSE(p.pencil.floor_z.has_value());
+  EXPECT_EQ(p.stock, 0);
+  EXPECT_EQ(p.direction, CutDirection::kAny);
   const std::string json = params_json(j);
   for (const char* s : {"\"reference\":\"ball:10\"", "\"reference_diameter\":10.0",
                         "\"stepover\":0.0", "\"scallop\":0.005", "\"max_passes\":64",
-                        "\"interval\":0.5", "\"min_angle\":20.0", "\"floor_z\":null"})
+                        "\"interval\":0.5", "\"min_angle\":20.0", "\"floor_z\":null",
+                        "\"stock\":0.0", "\"direction\":\"any\""})
     EXPECT_NE(json.find(s), std::string::npos) << s << " in " << json;
   // A scallop height with stepover 0 (its meaning) is fine; a larger reference of any size too.
   const JobSpec s =
@@ -128,6 +136,16 @@ TEST(FilletSpec, BadValuesAreNamed) {
                   "min_angle must be between 0 and 180 degrees, got 200"));
   EXPECT_TRUE(has(error("params = { reference = \"ball:10\", merge_distance = -1 }"),
                   "merge_distance must be >= 0"));
+  // Stock: down to (not including) minus the clean-up ball's radius (ball:3: 1.5 mm).
+  EXPECT_TRUE(has(error("params = { reference = \"ball:10\", stock = -1.5 }"),
+                  "stock must be greater than minus the ball radius (-1.5 mm)"));
+  EXPECT_EQ(fillet_job("params = { reference = \"ball:10\", stock = -1.4 }").error, "");
+  EXPECT_TRUE(has(error("params = { reference = \"ball:10\", stock = true }"),
+                  "'params.stock' must be a number"));
+  // Direction: any, climb or conventional, named with the allowed values.
+  EXPECT_TRUE(has(error("params = { reference = \"ball:10\", direction = \"zigzag\" }"),
+                  "'params.direction' must be \"any\", \"climb\" or \"conventional\", got "
+                  "\"zigzag\""));
   // Field names are not keys; other operations' keys are not fillet's.
   EXPECT_TRUE(has(error("params = { reference = \"ball:10\", reference_diameter = 10 }"),
                   "'params.reference_diameter' is not a known key"));
