@@ -43,9 +43,9 @@ int main(int argc, char** argv) {
   par::ThreadLimit limit(threads);
   std::printf("ball 5 mm, fit %g mm, step-down %g mm, min angle %g deg, tolerance %g mm, %d threads\n",
               fit_xy, step_down, min_angle, tolerance, threads);
-  std::printf("%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %7s %6s %9s %8s\n", "mesh", "facets",
-              "interval", "total s", "elem s", "scan s", "zlev s", "link s", "refine s", "check s",
-              "pencil", "kept", "paths", "length mm", "RSS MB");
+  std::printf("%-22s %9s %8s %8s %8s %8s %8s %8s %8s %8s %8s %8s %7s %6s %9s %8s\n", "mesh",
+              "facets", "interval", "total s", "elem s", "scan s", "zlev s", "link s", "index s",
+              "refine s", "check s", "pencil", "kept", "paths", "length mm", "RSS MB");
   std::printf("%-22s refined / lifted points follow each row\n", "");
   for (const std::string& path : meshes) {
     io::MeshReadResult in = io::read_mesh(path);
@@ -63,11 +63,13 @@ int main(int argc, char** argv) {
       const PencilResult r = run_pencil(in.mesh, ball_cutter(5), p, control);
       const double total = clock.seconds();
       const PencilStats& s = r.stats;
-      std::printf("%-22s %9zu %8g %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8llu %7llu %6llu %9.1f %8.1f\n",
-                  std::filesystem::path(path).filename().c_str(), in.mesh.facets.size(), interval,
-                  total, s.elements_s, s.scan_s, s.zlevel_s, s.link_s, s.refine_s, s.check_s,
-                  (unsigned long long)s.pencil_points, (unsigned long long)s.kept_points,
-                  (unsigned long long)s.paths, s.traced_length, peak_rss_bytes() / 1048576.0);
+      std::printf(
+          "%-22s %9zu %8g %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8llu %7llu %6llu %9.1f "
+          "%8.1f\n",
+          std::filesystem::path(path).filename().c_str(), in.mesh.facets.size(), interval, total,
+          s.elements_s, s.scan_s, s.zlevel_s, s.link_s, s.index_s, s.refine_s, s.check_s,
+          (unsigned long long)s.pencil_points, (unsigned long long)s.kept_points,
+          (unsigned long long)s.paths, s.traced_length, peak_rss_bytes() / 1048576.0);
       std::printf("%-22s refined %llu, lifted %llu, candidates %llu, chains %llu\n", "",
                   (unsigned long long)s.refined_points, (unsigned long long)s.lifted_points,
                   (unsigned long long)s.candidates, (unsigned long long)s.chains);

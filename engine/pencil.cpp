@@ -8,6 +8,7 @@
 
 #include "engine/drop_index.hpp"
 #include "engine/facet_table.hpp"
+#include "engine/mesh_distance.hpp"
 #include "engine/parallel.hpp"
 #include "engine/scan.hpp"
 #include "engine/surface_check.hpp"
@@ -138,12 +139,13 @@ void refine(const ScanElements& se, const PencilCandidate& a, const PencilCandid
             double tol, double min_angle, double floor_z, int depth, const Deficit& deficit,
             std::vector<PencilCandidate>& out, std::uint64_t& added) {
   // Chords shorter than twice the tolerance are within it of any crease between their ends:
-  // only a dip below the surface still refines them, to depth 8 (1/256 of the chord; near a
-  // kink of the crease at a wall's top the dip is then below 1e-6 mm across the wall).
+  // only a dip below the surface by more than half the tolerance still refines them, to
+  // depth 8 (1/256 of the chord; near a kink of the crease at a wall's top). Smaller dips
+  // (a crease curving sideways into a wall) are lifted by the check below.
   if (a.family == 2 || depth >= 16) return;
   const bool loose = (b.p - a.p).norm() >= 2 * tol &&
                      chord_error(a.p, tangent_of(a), b.p, tangent_of(b)) > tol;
-  if (!loose && (depth >= 8 || deficit(0.5 * (a.p + b.p)) <= 1e-9)) return;
+  if (!loose && (depth >= 8 || deficit(0.5 * (a.p + b.p)) <= 0.5 * tol)) return;
   PencilCandidate c;
   if (!crease_between(se, a, b, min_angle, floor_z, c)) return;
   ++added;
@@ -301,8 +303,11 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   if (control.cancel.load()) throw Cancelled{};
 
   // The point drop-cutter (Embree, exact in double): checks refined points and chords.
+  Stopwatch index_clock;
   const FacetTable table = build_facet_table(mesh);
   const DropIndex index(table, cutter);
+  const MeshDistance distance(mesh);
+  st.index_s = index_clock.seconds();
   auto deficit_at = [&](const Vec3& q) { return surface_deficit(index, floor_z, q); };
   auto closest = [&](const ElementRef& e) -> std::function<Vec3(const Vec3&)> {
     const auto& V = mesh.vertices;
@@ -337,7 +342,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
         if (depth >= 16) return;
         const bool loose = (b.p - a.p).norm() >= 2 * p.tolerance &&
                            chord_error(a.p, tangent_of(a), b.p, tangent_of(b)) > p.tolerance;
-        if (!loose && (depth >= 8 || deficit_at(0.5 * (a.p + b.p)) <= 1e-9)) return;
+        if (!loose && (depth >= 8 || deficit_at(0.5 * (a.p + b.p)) <= 0.5 * p.tolerance)) return;
         const double zm = 0.5 * (a.p.z() + b.p.z());
         const Vec2 guess = 0.5 * (a.p.head<2>() + b.p.head<2>());
         // The crease of a's elements, else of b's (a crease may pass from one pair to another
@@ -473,25 +478,48 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   std::vector<std::uint64_t> lifted(pieces.size(), 0), splits(pieces.size(), 0);
   par::for_each(pieces.size(), 1, [&](std::size_t k) {
     const auto& pts = pieces[k];
+    // Each point and chord sampled once: the dips decide the splits, and only the chords
+    // with a dip (at a sample or an end) are handed to the lift.
+    std::vector<double> at(pts.size());
+    for (std::size_t i = 0; i < pts.size(); ++i) at[i] = deficit_at(pts[i]);
     std::vector<Vec3> cur = {pts[0]};
     std::vector<std::array<Vec3, 2>> cur_b = {normals[k][0]};
+    std::vector<bool> dipped;  // per chord of cur
     auto flush = [&] {
       if (cur.size() >= 2 && polyline_length(cur) >= std::max(p.min_length, 1e-9)) {
-        lifted[k] += lift_above_surface(index, floor_z, spacing, cur);
-        split[k].push_back(std::move(cur));
-        split_b[k].push_back(std::move(cur_b));
+        lifted[k] += lift_above_surface(index, floor_z, spacing, cur, &dipped);
+        // Exact: the ball swept along every chord (dips between the samples).
+        std::vector<bool> touching;
+        lifted[k] += lift_swept(distance, index, floor_z, R, leave, cur, 24, &touching);
+        std::size_t from = 0;
+        for (std::size_t i = 0; i <= touching.size(); ++i) {
+          if (i < touching.size() && !touching[i]) continue;
+          // Piece [from, i]; a chord still touching is never cut.
+          if (i > from) {
+            std::vector<Vec3> part(cur.begin() + from, cur.begin() + i + 1);
+            if (polyline_length(part) >= std::max(p.min_length, 1e-9)) {
+              split[k].push_back(std::move(part));
+              split_b[k].emplace_back(cur_b.begin() + from, cur_b.begin() + i + 1);
+            }
+          }
+          if (i < touching.size()) ++splits[k];
+          from = i + 1;
+        }
       }
       cur.clear();
       cur_b.clear();
+      dipped.clear();
     };
     for (std::size_t i = 1; i < pts.size(); ++i) {
       const int n = std::max(4, int(std::ceil((pts[i] - pts[i - 1]).norm() / spacing)));
-      double dip = 0;
+      double dip = std::max({0.0, at[i - 1], at[i]});
       for (int j = 1; j < n && dip <= leave; ++j)
         dip = std::max(dip, deficit_at(pts[i - 1] + (pts[i] - pts[i - 1]) * (double(j) / n)));
       if (dip > leave) {
         ++splits[k];
         flush();
+      } else if (!cur.empty()) {
+        dipped.push_back(dip > 0);
       }
       cur.push_back(pts[i]);
       cur_b.push_back(normals[k][i]);

@@ -18,8 +18,10 @@
 //   4. safety: every chord is checked against the point drop-cutter (Embree, exact in
 //      double) at samples a tenth of the interval apart; a chord dipping by more than
 //      max(10 tolerance, 0.05 mm) has left the crease (two creases the refinement could not
-//      bridge) and the piece is split there; smaller dips are lifted, so the path never
-//      gouges;
+//      bridge) and the piece is split there; smaller dips are lifted; then the ball is swept
+//      along every chord exactly (engine/surface_check.hpp lift_swept: dips between the
+//      samples are lifted too; a chord that would need more than that lift is split off),
+//      so the path never gouges (to 1e-7 mm);
 //   5. pieces closer than `merge_distance` end to end are joined, pieces shorter than
 //      `min_length` dropped, and the rest ordered and oriented greedily to shorten the air
 //      moves between them. With a cut `direction` (climb or conventional, spindle M3:

@@ -8,7 +8,7 @@ namespace ncpath {
 double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
   // On or above at q itself: no gouge whatever the neighbours say (one query, the common case).
   double d = std::max(floor_z, index.query(q.x(), q.y()).tip_z) - q.z();
-  if (d <= 0) return d;
+  if (d <= kSurfaceSlack) return std::min(d, 0.0);
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy) {
       const double z = index.query(q.x() + 1e-6 * dx, q.y() + 1e-6 * dy).tip_z;
@@ -18,11 +18,13 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
 }
 
 std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
-                               std::vector<Vec3>& pts) {
+                               std::vector<Vec3>& pts, const std::vector<bool>* first_check) {
   const std::size_t n_pts = pts.size();
   std::vector<bool> raised(n_pts, false);
-  // Chords to (re)check: all at first, then only those next to a raised point.
+  // Chords to (re)check: all (or those the caller names) at first, then only those next to
+  // a raised point.
   std::vector<bool> check(n_pts > 0 ? n_pts - 1 : 0, true);
+  if (first_check && first_check->size() == check.size()) check = *first_check;
   for (int pass = 0; pass < 3; ++pass) {
     std::vector<double> lift(n_pts, 0);
     for (std::size_t i = 0; i < n_pts; ++i)
@@ -48,6 +50,78 @@ std::size_t lift_above_surface(const DropIndex& index, double floor_z, double sp
         if (i < check.size()) check[i] = true;
       }
     if (!any) break;
+  }
+  return std::size_t(std::count(raised.begin(), raised.end(), true));
+}
+
+std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
+                       double radius, double max_lift, std::vector<Vec3>& pts, int rounds,
+                       std::vector<bool>* touching) {
+  const std::size_t n = pts.size();
+  std::vector<bool> raised(n, false);
+  for (std::size_t i = 0; i < n; ++i)
+    if (pts[i].z() < floor_z) {
+      pts[i].z() = floor_z;
+      raised[i] = true;
+    }
+  const Vec3 up(0, 0, radius);
+  const double r = radius - kSweepSlack;
+  // Sweeps chord i; the lift it needs (0 when clear): the drop-cutter deficit where the ball
+  // first touches, at least the ball's penetration there, plus the slack.
+  auto sweep = [&](std::size_t i) {
+    const Vec3 a = pts[i] + up, b = pts[i + 1] + up;
+    const double len = (b - a).norm();
+    std::optional<double> s;
+    if (distance.closest(a, radius).distance <= r)
+      s = 0.0;  // the start touches already
+    else if (len > 0)
+      s = distance.march(a, (b - a) / len, r, len);
+    if (!s) return 0.0;
+    const Vec3 tip = pts[i] + (pts[i + 1] - pts[i]) * (len > 0 ? *s / len : 0.0);
+    const double d = std::max(surface_deficit(index, floor_z, tip),
+                              radius - distance.closest(tip + up, radius).distance);
+    return std::max(d, kSweepSlack) + kSweepSlack;
+  };
+  // The first contact is where the dip starts, not where it is deepest: a chord touching
+  // again is lifted by at least twice its previous lift (a dip of depth h is cleared within
+  // log2(h / kSweepSlack) rounds, over-lifting by less than h). A chord whose lifts would
+  // add up to more than max_lift (a wall in the way, which lifting cannot clear) is left
+  // alone and reported.
+  std::vector<bool> check(n > 0 ? n - 1 : 0, true), stuck(check.size(), false);
+  std::vector<double> last(check.size(), 0), total(check.size(), 0);
+  for (int round = 0; round < rounds; ++round) {
+    std::vector<double> lift(n, 0);
+    bool any = false;
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      if (!check[i] || stuck[i]) continue;
+      double d = sweep(i);
+      if (!(d > 0)) continue;
+      d = std::max(d, 2 * last[i]);
+      if (total[i] + d > max_lift) {
+        stuck[i] = true;
+        continue;
+      }
+      last[i] = d;
+      total[i] += d;
+      any = true;
+      lift[i] = std::max(lift[i], d);
+      lift[i + 1] = std::max(lift[i + 1], d);
+    }
+    std::fill(check.begin(), check.end(), false);
+    if (!any) break;
+    for (std::size_t i = 0; i < n; ++i)
+      if (lift[i] > 0) {
+        pts[i].z() += lift[i];
+        raised[i] = true;
+        if (i > 0) check[i - 1] = true;
+        if (i < check.size()) check[i] = true;
+      }
+  }
+  if (touching) {
+    // Stuck chords, and those the last round's lifts leave touching.
+    touching->assign(check.size(), false);
+    for (std::size_t i = 0; i + 1 < n; ++i)
+      (*touching)[i] = stuck[i] || (check[i] && sweep(i) > 0);
   }
   return std::size_t(std::count(raised.begin(), raised.end(), true));
 }

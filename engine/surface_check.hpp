@@ -7,11 +7,17 @@
 #include <vector>
 
 #include "engine/drop_index.hpp"
+#include "engine/mesh_distance.hpp"
 #include "kernels/geom/vec.hpp"
 
 namespace ncpath {
 
-// How far the tool tip at q is below the CL surface (mm, <= 0 when on or above it). The
+// Dips of at most this much (mm) are rounding, not gouges: reported as 0.
+inline constexpr double kSurfaceSlack = 1e-9;
+
+// How far the tool tip at q is below the CL surface (mm, <= 0 when on or above it or less
+// than kSurfaceSlack below it: a point computed on the surface, e.g. an exact crease point,
+// needs one query, not nine). The
 // drop-cutter height is only upper semicontinuous: at the foot of a wall it is the wall's
 // top although the tool there merely touches the wall (or, in a corner, both walls). A real
 // gouge is an open set, so the smallest deficit over q and its eight neighbours 1e-6 mm away
@@ -22,8 +28,26 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
 // samples along every chord no farther apart than `spacing` (at least its middle): a chord
 // whose samples dip is lifted at both ends by the largest dip; the chords next to a raised
 // point are checked again (a lift can expose a neighbour), up to three passes. Returns the
-// number of points raised.
+// number of points raised. `first_check` (one flag per chord), when given, limits the first
+// pass to the flagged chords and their end points: a caller that has sampled the chords
+// already (with the same spacing) flags those with a dip there or at an end.
 std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
-                               std::vector<Vec3>& points);
+                               std::vector<Vec3>& points,
+                               const std::vector<bool>* first_check = nullptr);
+
+// The exact check after the sampled one: the ball (radius R) swept along every chord of the
+// tool-tip polyline, by MeshDistance::march with radius R - kSweepSlack, so a chord is
+// accepted only if its ball nowhere comes closer than that to the mesh (not just at
+// samples: a crease bending sideways between two samples dips in between). A chord that
+// does is lifted at both ends by the drop-cutter deficit where its ball first touches (at
+// least kSweepSlack, and at least twice its previous lift when it touches again), and it and
+// its neighbours are swept again, up to `rounds` rounds; a chord whose lifts would add up to
+// more than max_lift (mm: a wall in the way) is not lifted further. Points below floor_z are
+// raised to it. Returns the number of points raised; `touching` (when given) gets one flag
+// per chord: still touching at the end (callers must not cut such a chord).
+inline constexpr double kSweepSlack = 1e-7;
+std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
+                       double radius, double max_lift, std::vector<Vec3>& points,
+                       int rounds = 24, std::vector<bool>* touching = nullptr);
 
 }  // namespace ncpath

@@ -46,6 +46,7 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
       {"reference_link_s", p.link_s, "s"},
       {"reference_refine_s", p.refine_s, "s"},
       {"reference_check_s", p.check_s, "s"},
+      {"reference_index_s", p.index_s, "s"},
   };
   stats.insert(stats.end(), std::begin(reference), std::end(reference));
 }

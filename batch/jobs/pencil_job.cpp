@@ -67,6 +67,7 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
       {"link_s", st.link_s, "s"},
       {"refine_s", st.refine_s, "s"},
       {"check_s", st.check_s, "s"},
+      {"index_s", st.index_s, "s"},
   };
   stats.insert(stats.end(), std::begin(list), std::end(list));
 }
