@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -14,6 +15,10 @@
 #include "kernels/cleanup/pencil.hpp"
 
 namespace ncpath {
+
+namespace {
+constexpr double kNoLiftLimit = std::numeric_limits<double>::infinity();
+}  // namespace
 
 std::string validate(const FilletParams& p) {
   std::ostringstream os;
@@ -205,12 +210,15 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
       }
       if (reverse) std::reverse(pass.begin(), pass.end());
       out.lifted += lift_above_surface(index, floor_z, spacing, pass);
+      // Exact between the samples (the lift doubles until clear: never cut).
+      out.lifted += lift_swept(distance, index, floor_z, rc, kNoLiftLimit, pass, 48);
       if (!out.polys.empty() && one_way) {
         out.polys.push_back({pass.front()});
         out.kinds.push_back(PathKind::kRapid);
       } else if (!out.polys.empty()) {
         std::vector<Vec3> link = {out.polys.back().back(), pass.front()};
         out.lifted += lift_above_surface(index, floor_z, spacing, link);
+        out.lifted += lift_swept(distance, index, floor_z, rc, kNoLiftLimit, link, 48);
         out.polys.push_back(std::move(link));
         out.kinds.push_back(PathKind::kLinkAtDepth);
       }
