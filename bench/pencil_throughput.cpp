@@ -7,7 +7,8 @@
 //                            [--threads 2] [--min-angle 20] [--tolerance 0.01]
 //
 // Without --mesh: anchor_dense, fandisk, lion-head, refined_elephant (datasets/cache/meshes)
-// and elephant_large.stl when present (datasets/make-large-mesh.sh).
+// and anchor_large.stl (486,272 facets, the >= 454k model) and elephant_large.stl when present
+// (datasets/make-large-mesh.sh).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes";
   if (meshes.empty()) {
     for (const char* m : {"anchor_dense.off", "fandisk.off", "lion-head.off", "refined_elephant.off",
-                          "elephant_large.stl"})
+                          "anchor_large.stl", "elephant_large.stl"})
       if (std::filesystem::exists(dir / m)) meshes.push_back((dir / m).string());
   }
   par::ThreadLimit limit(threads);

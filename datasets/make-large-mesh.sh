@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Generates the large benchmark mesh datasets/cache/meshes/elephant_large.stl: CGAL's
-# refined_elephant.off (88,928 facets) midpoint-subdivided twice to 1,422,848 facets,
-# written as binary STL (~68 MiB). Fetches the CGAL meshes first if needed. Idempotent:
-# does nothing when a complete STL of at least MIN_FACETS facets is already there.
-# Works from any cwd.
+# Generates the large benchmark meshes in datasets/cache/meshes/ by midpoint subdivision,
+# written as binary STL. Fetches the CGAL meshes first if needed. Idempotent: does nothing
+# for a mesh when a complete STL of at least its facet count is already there. Works from
+# any cwd.
+#   elephant_large.stl: refined_elephant.off (88,928 facets) subdivided twice to 1,422,848
+#                       facets (~68 MiB; at least NCPATH_LARGE_MIN_FACETS, default 1,400,000)
+#   anchor_large.stl:   anchor_dense.off (7,598 facets) subdivided three times to 486,272
+#                       facets (~23 MiB; at least 454,273, the seed's Table 1 model)
 #
 #   datasets/make-large-mesh.sh [path/to/ncpath_subdivide]
 #
@@ -15,9 +18,6 @@ set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/.." && pwd)"
 MESHES="$HERE/cache/meshes"
-SRC="$MESHES/refined_elephant.off"
-OUT="$MESHES/elephant_large.stl"
-MIN_FACETS="${NCPATH_LARGE_MIN_FACETS:-1400000}"
 
 log() { echo "make-large-mesh: $*"; }
 die() { echo "make-large-mesh: ERROR: $*" >&2; exit 1; }
@@ -32,39 +32,54 @@ stl_facets() {
   return 0
 }
 
-if [ -f "$OUT" ]; then
-  n="$(stl_facets "$OUT")"
-  if [ -n "$n" ] && [ "$n" -ge "$MIN_FACETS" ]; then
-    log "$OUT already there ($n facets, $(stat -c %s "$OUT") bytes), nothing to do"
-    exit 0
+# Sets bin (the ncpath_subdivide to run) when a mesh has to be made.
+BIN_ARG="${1:-}"
+bin=""
+find_bin() {
+  [ -z "$bin" ] || return 0
+  bin="$BIN_ARG"
+  if [ -z "$bin" ]; then
+    for c in "$ROOT/build/datasets/ncpath_subdivide" "$ROOT"/build*/datasets/ncpath_subdivide; do
+      if [ -x "$c" ]; then bin="$c"; break; fi
+    done
+    [ -n "$bin" ] || bin="$(command -v ncpath_subdivide || true)"
+    [ -n "$bin" ] || die "ncpath_subdivide not found; build it (cmake --build build --target \
+ncpath_subdivide) or pass its path as the first argument"
   fi
-  log "$OUT is incomplete or too small; regenerating"
-fi
+  [ -x "$bin" ] || die "$bin is not an executable"
+}
+
+# make_one SRC OUT MIN_FACETS
+make_one() {
+  local SRC="$1" OUT="$2" MIN_FACETS="$3" n start end
+  if [ -f "$OUT" ]; then
+    n="$(stl_facets "$OUT")"
+    if [ -n "$n" ] && [ "$n" -ge "$MIN_FACETS" ]; then
+      log "$OUT already there ($n facets, $(stat -c %s "$OUT") bytes), nothing to do"
+      return 0
+    fi
+    log "$OUT is incomplete or too small; regenerating"
+  fi
+
+  [ -s "$SRC" ] || die "$SRC missing after fetch-cgal-meshes.sh"
+  find_bin
+  log "$bin $SRC -> $OUT (--min-facets $MIN_FACETS)"
+  tmp="$OUT.partial"
+  trap 'rm -f "$tmp"' EXIT
+  start=$(date +%s.%N)
+  "$bin" "$SRC" "$tmp" --min-facets "$MIN_FACETS" | sed 's/^/  /'
+  end=$(date +%s.%N)
+  n="$(stl_facets "$tmp")"
+  if [ -z "$n" ] || [ "$n" -lt "$MIN_FACETS" ]; then
+    die "$tmp is not a complete binary STL of >= $MIN_FACETS facets"
+  fi
+  mv -f "$tmp" "$OUT"
+  log "done: $OUT, $n facets, $(stat -c %s "$OUT") bytes, $(awk -v a="$start" -v b="$end" \
+  'BEGIN{printf "%.1f", b - a}') s"
+}
 
 "$HERE/fetch-cgal-meshes.sh"
-[ -s "$SRC" ] || die "$SRC missing after fetch-cgal-meshes.sh"
 
-bin="${1:-}"
-if [ -z "$bin" ]; then
-  for c in "$ROOT/build/datasets/ncpath_subdivide" "$ROOT"/build*/datasets/ncpath_subdivide; do
-    if [ -x "$c" ]; then bin="$c"; break; fi
-  done
-  [ -n "$bin" ] || bin="$(command -v ncpath_subdivide || true)"
-  [ -n "$bin" ] || die "ncpath_subdivide not found; build it (cmake --build build --target \
-ncpath_subdivide) or pass its path as the first argument"
-fi
-[ -x "$bin" ] || die "$bin is not an executable"
-
-log "$bin $SRC -> $OUT (--min-facets $MIN_FACETS)"
-tmp="$OUT.partial"
-trap 'rm -f "$tmp"' EXIT
-start=$(date +%s.%N)
-"$bin" "$SRC" "$tmp" --min-facets "$MIN_FACETS" | sed 's/^/  /'
-end=$(date +%s.%N)
-n="$(stl_facets "$tmp")"
-if [ -z "$n" ] || [ "$n" -lt "$MIN_FACETS" ]; then
-  die "$tmp is not a complete binary STL of >= $MIN_FACETS facets"
-fi
-mv -f "$tmp" "$OUT"
-log "done: $OUT, $n facets, $(stat -c %s "$OUT") bytes, $(awk -v a="$start" -v b="$end" \
-'BEGIN{printf "%.1f", b - a}') s"
+make_one "$MESHES/refined_elephant.off" "$MESHES/elephant_large.stl" \
+  "${NCPATH_LARGE_MIN_FACETS:-1400000}"
+make_one "$MESHES/anchor_dense.off" "$MESHES/anchor_large.stl" 454273
