@@ -466,8 +466,8 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     normals.resize(w);
   }
 
-  // 4. Never below the CL surface: chords checked by the point drop-cutter, lifted.
-  // A chord that dips by more than kLeave below the surface has left the crease (a link
+  // 4. Never below the CL surface: the ball swept along every chord (exact), a chord that
+  // touches lifted. A chord that would need more than `leave` has left the crease (a link
   // between two creases the refinement could not bridge): the piece is split there instead
   // of lifted, so that pencil paths stay on creases.
   Stopwatch check_clock;
@@ -477,54 +477,24 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   std::vector<std::vector<std::vector<std::array<Vec3, 2>>>> split_b(pieces.size());
   std::vector<std::uint64_t> lifted(pieces.size(), 0), splits(pieces.size(), 0);
   par::for_each(pieces.size(), 1, [&](std::size_t k) {
-    const auto& pts = pieces[k];
-    // Each point and chord sampled once: the dips decide the splits, and only the chords
-    // with a dip (at a sample or an end) are handed to the lift.
-    std::vector<double> at(pts.size());
-    for (std::size_t i = 0; i < pts.size(); ++i) at[i] = deficit_at(pts[i]);
-    std::vector<Vec3> cur = {pts[0]};
-    std::vector<std::array<Vec3, 2>> cur_b = {normals[k][0]};
-    std::vector<bool> dipped;  // per chord of cur
-    auto flush = [&] {
-      if (cur.size() >= 2 && polyline_length(cur) >= std::max(p.min_length, 1e-9)) {
-        lifted[k] += lift_above_surface(index, floor_z, spacing, cur, &dipped);
-        // Exact: the ball swept along every chord (dips between the samples).
-        std::vector<bool> touching;
-        lifted[k] += lift_swept(distance, index, floor_z, R, leave, cur, 24, &touching);
-        std::size_t from = 0;
-        for (std::size_t i = 0; i <= touching.size(); ++i) {
-          if (i < touching.size() && !touching[i]) continue;
-          // Piece [from, i]; a chord still touching is never cut.
-          if (i > from) {
-            std::vector<Vec3> part(cur.begin() + from, cur.begin() + i + 1);
-            if (polyline_length(part) >= std::max(p.min_length, 1e-9)) {
-              split[k].push_back(std::move(part));
-              split_b[k].emplace_back(cur_b.begin() + from, cur_b.begin() + i + 1);
-            }
-          }
-          if (i < touching.size()) ++splits[k];
-          from = i + 1;
+    std::vector<Vec3> cur = pieces[k];
+    const auto& cur_b = normals[k];
+    std::vector<bool> touching;
+    lifted[k] += lift_swept(distance, index, floor_z, R, leave, spacing, cur, 24, &touching);
+    std::size_t from = 0;
+    for (std::size_t i = 0; i <= touching.size(); ++i) {
+      if (i < touching.size() && !touching[i]) continue;
+      // Piece [from, i]; a chord still touching is never cut.
+      if (i > from) {
+        std::vector<Vec3> part(cur.begin() + from, cur.begin() + i + 1);
+        if (polyline_length(part) >= std::max(p.min_length, 1e-9)) {
+          split[k].push_back(std::move(part));
+          split_b[k].emplace_back(cur_b.begin() + from, cur_b.begin() + i + 1);
         }
       }
-      cur.clear();
-      cur_b.clear();
-      dipped.clear();
-    };
-    for (std::size_t i = 1; i < pts.size(); ++i) {
-      const int n = std::max(4, int(std::ceil((pts[i] - pts[i - 1]).norm() / spacing)));
-      double dip = std::max({0.0, at[i - 1], at[i]});
-      for (int j = 1; j < n && dip <= leave; ++j)
-        dip = std::max(dip, deficit_at(pts[i - 1] + (pts[i] - pts[i - 1]) * (double(j) / n)));
-      if (dip > leave) {
-        ++splits[k];
-        flush();
-      } else if (!cur.empty()) {
-        dipped.push_back(dip > 0);
-      }
-      cur.push_back(pts[i]);
-      cur_b.push_back(normals[k][i]);
+      if (i < touching.size()) ++splits[k];
+      from = i + 1;
     }
-    flush();
   });
   pieces.clear();
   normals.clear();

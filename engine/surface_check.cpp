@@ -18,13 +18,11 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
 }
 
 std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
-                               std::vector<Vec3>& pts, const std::vector<bool>* first_check) {
+                               std::vector<Vec3>& pts) {
   const std::size_t n_pts = pts.size();
   std::vector<bool> raised(n_pts, false);
-  // Chords to (re)check: all (or those the caller names) at first, then only those next to
-  // a raised point.
+  // Chords to (re)check: all at first, then only those next to a raised point.
   std::vector<bool> check(n_pts > 0 ? n_pts - 1 : 0, true);
-  if (first_check && first_check->size() == check.size()) check = *first_check;
   for (int pass = 0; pass < 3; ++pass) {
     std::vector<double> lift(n_pts, 0);
     for (std::size_t i = 0; i < n_pts; ++i)
@@ -55,8 +53,8 @@ std::size_t lift_above_surface(const DropIndex& index, double floor_z, double sp
 }
 
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
-                       double radius, double max_lift, std::vector<Vec3>& pts, int rounds,
-                       std::vector<bool>* touching) {
+                       double radius, double max_lift, double spacing, std::vector<Vec3>& pts,
+                       int rounds, std::vector<bool>* touching) {
   const std::size_t n = pts.size();
   std::vector<bool> raised(n, false);
   for (std::size_t i = 0; i < n; ++i)
@@ -89,6 +87,7 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
   // alone and reported.
   std::vector<bool> check(n > 0 ? n - 1 : 0, true), stuck(check.size(), false);
   std::vector<double> last(check.size(), 0), total(check.size(), 0);
+  std::vector<bool> sampled(check.size(), false);
   for (int round = 0; round < rounds; ++round) {
     std::vector<double> lift(n, 0);
     bool any = false;
@@ -96,12 +95,24 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
       if (!check[i] || stuck[i]) continue;
       double d = sweep(i);
       if (!(d > 0)) continue;
-      d = std::max(d, 2 * last[i]);
+      const bool first = !sampled[i] && spacing > 0;
+      if (first) {
+        // First touch: the largest sampled deficit is a better first lift than the deficit
+        // where the dip starts.
+        const Vec3 a = pts[i], b = pts[i + 1];
+        const int m = std::max(2, int(std::ceil((b - a).norm() / spacing)));
+        for (int j = 1; j < m && d <= max_lift; ++j)
+          d = std::max(d, surface_deficit(index, floor_z, a + (b - a) * (double(j) / m)) +
+                              kSweepSlack);
+        sampled[i] = true;
+      } else {
+        d = std::max(d, 2 * last[i]);  // what is left between the samples: doubling
+      }
       if (total[i] + d > max_lift) {
         stuck[i] = true;
         continue;
       }
-      last[i] = d;
+      last[i] = first ? 0 : d;  // the doubling starts after the sampled lift
       total[i] += d;
       any = true;
       lift[i] = std::max(lift[i], d);

@@ -28,26 +28,26 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
 // samples along every chord no farther apart than `spacing` (at least its middle): a chord
 // whose samples dip is lifted at both ends by the largest dip; the chords next to a raised
 // point are checked again (a lift can expose a neighbour), up to three passes. Returns the
-// number of points raised. `first_check` (one flag per chord), when given, limits the first
-// pass to the flagged chords and their end points: a caller that has sampled the chords
-// already (with the same spacing) flags those with a dip there or at an end.
+// number of points raised.
 std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
-                               std::vector<Vec3>& points,
-                               const std::vector<bool>* first_check = nullptr);
+                               std::vector<Vec3>& points);
 
-// The exact check after the sampled one: the ball (radius R) swept along every chord of the
-// tool-tip polyline, by MeshDistance::march with radius R - kSweepSlack, so a chord is
-// accepted only if its ball nowhere comes closer than that to the mesh (not just at
-// samples: a crease bending sideways between two samples dips in between). A chord that
-// does is lifted at both ends by the drop-cutter deficit where its ball first touches (at
-// least kSweepSlack, and at least twice its previous lift when it touches again), and it and
-// its neighbours are swept again, up to `rounds` rounds; a chord whose lifts would add up to
-// more than max_lift (mm: a wall in the way) is not lifted further. Points below floor_z are
-// raised to it. Returns the number of points raised; `touching` (when given) gets one flag
-// per chord: still touching at the end (callers must not cut such a chord).
+// The exact check: the ball (radius R) swept along every chord of the tool-tip polyline, by
+// MeshDistance::march with radius R - kSweepSlack, so a chord is accepted only if its ball
+// nowhere comes closer than that to the mesh (not just at samples: a crease bending sideways
+// between two samples dips in between). A chord that does is lifted at both ends: the first
+// time by the largest drop-cutter deficit at its samples (no farther apart than `spacing`;
+// 0: none) and where its ball first touches, later by at least twice its previous lift (the
+// first repeat by the deficit where it touches then); it
+// and its neighbours are swept again, up to `rounds` rounds. A chord whose lifts would add
+// up to more than max_lift (mm: a wall in the way, or a link that left the crease) is not
+// lifted further. Points below floor_z are raised to it. Returns the number of points
+// raised; `touching` (when given) gets one flag per chord: still touching at the end
+// (callers must not cut such a chord).
 inline constexpr double kSweepSlack = 1e-7;
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
-                       double radius, double max_lift, std::vector<Vec3>& points,
-                       int rounds = 24, std::vector<bool>* touching = nullptr);
+                       double radius, double max_lift, double spacing,
+                       std::vector<Vec3>& points, int rounds = 24,
+                       std::vector<bool>* touching = nullptr);
 
 }  // namespace ncpath
