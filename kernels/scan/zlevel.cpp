@@ -1,11 +1,12 @@
-// Z-level contours (kernels/scan/zlevel.hpp): pruning grid, candidate curves, splitting at
-// crossings and classification of the pieces. Linking and output: zlevel_loops.cpp.
+// Z-level contours (kernels/scan/zlevel.hpp): the top-level flow of zlevel_contours. Pruning
+// grid, regions and candidate curves, active (uncovered) curves, coincident trimming, splits
+// at tangent joints and crossings. Cover and piece classification: zlevel_cover.cpp; linking
+// and output: zlevel_loops.cpp.
 #include "kernels/scan/zlevel.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numbers>
 
 #include "kernels/scan/zlevel_detail.hpp"
 
@@ -14,37 +15,6 @@ namespace ncpath {
 using namespace zlevel_detail;
 
 namespace {
-
-// Uniform grid over the candidates' boxes. A cell is interior when it lies (by
-// tol::kZLevelCellMargin) inside one region: it is in the interior of U, no piece of the
-// boundary passes through it. `sum` counts the other (open) cells for box queries.
-struct Grid {
-  double x0 = 0, y0 = 0, cell = 1;
-  int nx = 1, ny = 1;
-  std::vector<std::uint8_t> interior;
-  std::vector<std::uint32_t> sum;  // (nx + 1) x (ny + 1): open cells in [0, i) x [0, j)
-
-  int ix(double x) const { return std::clamp(int(std::floor((x - x0) / cell)), 0, nx - 1); }
-  int iy(double y) const { return std::clamp(int(std::floor((y - y0) / cell)), 0, ny - 1); }
-  double gx(int i) const { return x0 + i * cell; }
-  double gy(int j) const { return y0 + j * cell; }
-  int at(const Vec2& p) const { return iy(p.y()) * nx + ix(p.x()); }
-  void range(const double* b, int& i0, int& j0, int& i1, int& j1) const {
-    i0 = ix(b[0]);
-    j0 = iy(b[1]);
-    i1 = ix(b[2]);
-    j1 = iy(b[3]);
-  }
-  bool any_open(const double* b) const {
-    if (!(b[0] <= b[2]) || !(b[1] <= b[3])) return false;
-    int i0, j0, i1, j1;
-    range(b, i0, j0, i1, j1);
-    const int w = nx + 1;
-    return sum[(j1 + 1) * w + i1 + 1] - sum[j0 * w + i1 + 1] - sum[(j1 + 1) * w + i0] +
-               sum[j0 * w + i0] >
-           0;
-  }
-};
 
 // Box of the element's region at any level at or below its top (conservative), false when
 // the region is empty at this level.
@@ -110,11 +80,6 @@ void mark_interior(const Region& g, const Level& lv, Grid& grid) {
   }
 }
 
-// Compressed lists of ids per open cell (count, scan, fill).
-struct CellLists {
-  std::vector<std::uint32_t> start, ids;
-};
-
 template <class BoxOf>
 void fill_lists(const Grid& grid, std::size_t n, BoxOf box_of, CellLists& out) {
   out.start.assign(std::size_t(grid.nx) * grid.ny + 1, 0);
@@ -148,120 +113,6 @@ bool boxes_overlap(const double* a, const double* b) {
   const double s = 1e-9;
   return a[0] <= b[2] + s && b[0] <= a[2] + s && a[1] <= b[3] + s && b[1] <= a[3] + s;
 }
-
-// Tangent joints are split explicitly; crossings between a facet's clip line and its own
-// edges' and vertices' curves, or a capsule side and its own end circles, are only those.
-bool structural_pair(const OffsetElements& el, const Region& p, const Region& q) {
-  const Region& a = p.kind < q.kind ? p : q;
-  const Region& b = p.kind < q.kind ? q : p;
-  auto vertex_point = [&](const Region& r) { return el.vertex_source[r.index]; };
-  if (a.kind == RegionKind::kFacet) {
-    const auto& fv = el.facet_vertices[a.index];
-    auto has = [&](std::uint32_t v) { return v == fv[0] || v == fv[1] || v == fv[2]; };
-    if (b.kind == RegionKind::kEdge)
-      return has(el.edge_vertices[b.index][0]) && has(el.edge_vertices[b.index][1]);
-    if (b.kind == RegionKind::kVertex) return has(vertex_point(b));
-    return false;
-  }
-  if (a.kind == RegionKind::kEdge && b.kind == RegionKind::kVertex) {
-    const auto& ev = el.edge_vertices[a.index];
-    return vertex_point(b) == ev[0] || vertex_point(b) == ev[1];
-  }
-  return false;
-}
-
-// Appends to `runs` the parameter intervals of curve c that are not certified inside U: c is
-// cut into sub-pieces of about a cell; one is certified when it lies in interior cells or its
-// hull (ends and, for arcs, the tangents' crossing) lies strictly inside one region other
-// than c's own. Crossings in certified parts cannot be on the boundary of U.
-using Box4f = std::array<float, 4>;
-
-// Box rounded outwards to floats (compact copies for scans over many regions).
-Box4f outward_box(const double* b) {
-  return {std::nextafter(float(b[0]), -INFINITY), std::nextafter(float(b[1]), -INFINITY),
-          std::nextafter(float(b[2]), INFINITY), std::nextafter(float(b[3]), INFINITY)};
-}
-
-void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
-                    const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
-                    const Level& lv, std::vector<std::pair<double, double>>& runs) {
-  const double m = tol::kZLevelCellMargin;
-  const bool arc = c.kind != CurveKind::kLine;
-  const double speed = arc ? std::sqrt(c.e1.squaredNorm() + c.e2.squaredNorm()) : 1.0;
-  double step = grid.cell / speed;
-  if (arc) step = std::min(step, std::numbers::pi / 4);
-  const int n = std::max(1, int(std::ceil(c.len / step)));
-  std::uint32_t last = kNone;
-  Vec2 h[3];
-  Vec2 prev = c.a;
-  for (int k = 0; k < n; ++k) {
-    const double s0 = c.len * k / n, s1 = k + 1 == n ? c.len : c.len * (k + 1) / n;
-    int nh = 2;
-    h[0] = prev;
-    h[1] = k + 1 == n ? c.b : curve_point(c, s1);
-    prev = h[1];
-    if (arc) h[nh++] = h[0] + std::tan(0.5 * (s1 - s0)) * curve_tangent(c, s0);
-    double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-    for (int q = 0; q < nh; ++q) {
-      b[0] = std::min(b[0], h[q].x());
-      b[1] = std::min(b[1], h[q].y());
-      b[2] = std::max(b[2], h[q].x());
-      b[3] = std::max(b[3], h[q].y());
-    }
-    bool found = !grid.any_open(b);
-    auto inside = [&](std::uint32_t gi) {
-      const Box4f& gb = rbox[gi];
-      if (gi == c.region || b[0] < gb[0] || b[1] < gb[1] || b[2] > gb[2] || b[3] > gb[3])
-        return false;
-      const Region& g = regions[gi];
-      for (int q = 0; q < nh; ++q)
-        if (!(region_phi(g, h[q], lv) < -m)) return false;
-      return true;
-    };
-    if (!found && last != kNone && inside(last)) found = true;
-    if (!found) {
-      const int cell = grid.at(0.5 * (h[0] + h[1]));
-      for (std::uint32_t q = cells.start[cell]; !found && q < cells.start[cell + 1]; ++q)
-        if (inside(cells.ids[q])) {
-          last = cells.ids[q];
-          found = true;
-        }
-    }
-    if (found) continue;
-    if (!runs.empty() && runs.back().second == s0)
-      runs.back().second = s1;
-    else
-      runs.emplace_back(s0, s1);
-  }
-}
-
-// The part [s0, s1] of curve c as a curve of its own (same geometry, ends shared).
-Curve sub_curve(const Curve& c, double s0, double s1) {
-  if (s0 == 0 && s1 == c.len) return c;
-  Curve r = c;
-  r.a = s0 == 0 ? c.a : curve_point(c, s0);
-  r.b = s1 == c.len ? c.b : curve_point(c, s1);
-  r.len = s1 - s0;
-  if (c.kind != CurveKind::kLine) {
-    const double sn = std::sin(s0), cs = std::cos(s0);
-    r.e1 = cs * c.e1 + sn * c.e2;
-    r.e2 = -sn * c.e1 + cs * c.e2;
-    r.t0 = c.t0 + s0;
-  }
-  finish_box(r);
-  return r;
-}
-
-// A point splitting act[curve] at parameter s. At a crossing of two lines, `other` is the
-// other line's region and `enter` +1 when the curve runs into it past p, -1 when out of it
-// (exact signs: the lines are not parallel); kNone and 0 elsewhere.
-struct Split {
-  std::uint32_t curve;
-  double s;
-  Vec2 p;
-  std::uint32_t other = kNone;
-  std::int8_t enter = 0;
-};
 
 }  // namespace
 
@@ -523,13 +374,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   }
   st.active_curves = act.size();
 
-  auto region_of_element = [&](std::uint32_t id) -> std::uint32_t {
-    const auto it =
-        std::lower_bound(regions.begin(), regions.end(), id,
-                         [](const Region& g, std::uint32_t e) { return g.element < e; });
-    return it != regions.end() && it->element == id ? std::uint32_t(it - regions.begin()) : kNone;
-  };
-
   // Splits: every curve's ends, the tangent joints, the crossings.
   std::vector<Split> splits;
   splits.reserve(curves.size() * 4);
@@ -537,29 +381,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     splits.push_back({i, 0.0, act[i].a});
     splits.push_back({i, act[i].len, act[i].b});
   }
-  for (const Joint& j : joints) {
-    for (std::uint32_t target : {j.target, j.alt[0], j.alt[1]}) {
-      if (target == kNone) continue;
-      const std::uint32_t gi = region_of_element(target);
-      if (gi == kNone) continue;
-      std::uint32_t best = kNone;
-      double best_d = 1e-6, best_s = 0;
-      for (std::uint32_t c = act_begin[gi]; c < act_begin[gi + 1]; ++c) {
-        double s = curve_param(act[c], j.p);
-        if (s < 0 || s > act[c].len) continue;
-        const double d = (curve_point(act[c], s) - j.p).norm();
-        if (d < best_d) {
-          best_d = d;
-          best = c;
-          best_s = s;
-        }
-      }
-      if (best != kNone) {
-        splits.push_back({best, best_s, j.p});
-        break;
-      }
-    }
-  }
+  joint_splits(joints, regions, act, act_begin, splits);
   {
     std::vector<Hit> hits;
     for_each_pair([&](std::uint32_t i, std::uint32_t j) {
@@ -585,85 +407,9 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     return a.p.y() < b.p.y();
   });
 
-  auto emits_at = [&](const Region& G, const Vec2& m) {
-    for (std::uint32_t c = G.curve_begin; c < G.curve_end; ++c) {
-      const double s = curve_param(curves[c], m);
-      if (s >= -1e-9 && s <= curves[c].len + 1e-9 &&
-          (curve_point(curves[c], std::clamp(s, 0.0, curves[c].len)) - m).norm() <=
-              params.on_boundary)
-        return true;
-    }
-    return false;
-  };
-
-  // The side of region gj on which the piece from splits[k] to splits[k + 1] lies, from the
-  // orientation of line crossings with gj at its ends: -1 inside, 1 outside, 0 unknown.
-  auto crossing_side = [&](std::size_t k, std::uint32_t gj) {
-    const std::uint32_t c = splits[k].curve;
-    int side = 0;
-    auto vote = [&](int v) { side = side == 0 || side == v ? v : 2; };
-    for (std::size_t q = k + 1; q-- > 0 && splits[q].curve == c && splits[q].s == splits[k].s;)
-      if (splits[q].other == gj && splits[q].enter != 0) vote(-splits[q].enter);
-    for (std::size_t q = k + 1;
-         q < splits.size() && splits[q].curve == c && splits[q].s == splits[k + 1].s; ++q)
-      if (splits[q].other == gj && splits[q].enter != 0) vote(splits[q].enter);
-    return side == 2 ? 0 : side;
-  };
-
   // Pieces between consecutive splits; keep those on the boundary of U.
   std::vector<KeptPiece> kept;
-  const double on = params.on_boundary;
-  for (std::size_t k = 0; k + 1 < splits.size(); ++k) {
-    const Split &s0 = splits[k], &s1 = splits[k + 1];
-    if (s0.curve != s1.curve || !(s1.s > s0.s)) continue;
-    const Curve& C = act[s0.curve];
-    ++st.pieces;
-    const Vec2 m = curve_point(C, 0.5 * (s0.s + s1.s));
-    const int cell = grid.at(m);
-    if (grid.interior[cell]) continue;
-    bool keep = true;
-    for (std::uint32_t q = region_cells.start[cell]; keep && q < region_cells.start[cell + 1];
-         ++q) {
-      const std::uint32_t gj = region_cells.ids[q];
-      const Box4f& gb = rbox[gj];
-      if (gj == C.region || m.x() < gb[0] || m.x() > gb[2] || m.y() < gb[1] || m.y() > gb[3])
-        continue;
-      const Region& G = regions[gj];
-      Vec2 gout;
-      const double phi = region_phi(G, m, lv, &gout);
-      if (phi < -on) {
-        keep = false;
-      } else if (phi <= on) {
-        // The midpoint is on G's boundary. The piece does not cross it (crossings split the
-        // curves), so a quarter point clearly inside or outside G decides the side: next to
-        // a tangent joint the piece leaves the curve it touches only quadratically, within
-        // `on` over sqrt(2 on rho), and rho is up to R / sin^2(slope) on a flat edge's
-        // ellipse (a clip line ending on it). Coincident when both quarter points are on it.
-        int in = 0, out = 0;
-        for (double f : {0.25, 0.75}) {
-          const double pf = region_phi(G, curve_point(C, s0.s + f * (s1.s - s0.s)), lv);
-          in += pf < -on;
-          out += pf > on;
-        }
-        if (in > 0 && out == 0) keep = false;
-        if (in == 0 && out == 0) {
-          // Along G's boundary. Next to a crossing with one of G's lines the crossing's
-          // orientation tells the side: clip lines of nearly coplanar facets cross at a
-          // grazing angle theta and stay within `on` of each other over on / theta.
-          const int side = crossing_side(k, gj);
-          if (side < 0) keep = false;
-          // Regions on both sides: inside U. Same side: the lower element id keeps the shared
-          // piece, provided it has a curve there (a capsule's end caps are its vertices').
-          if (side == 0) {
-            const Vec2 t = curve_tangent(C, 0.5 * (s0.s + s1.s));
-            if (gout.dot(Vec2(t.y(), -t.x())) < 0 || (G.element < C.element && emits_at(G, m)))
-              keep = false;
-          }
-        }
-      }
-    }
-    if (keep) kept.push_back({s0.curve, s0.s, s1.s, s0.p, s1.p});
-  }
+  classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, params, st, kept);
   st.kept = kept.size();
   build_loops(el, lv, regions, act, kept, params.link, result);
   return result;

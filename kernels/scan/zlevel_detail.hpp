@@ -1,9 +1,19 @@
 #pragma once
 // Internals of the z-level contour kernel (kernels/scan/zlevel.hpp), shared by its .cpp files
 // only: the region of one offset element at one level, its candidate boundary curves, the
-// membership test and curve-curve intersection.
+// membership test and curve-curve intersection, the pruning grid, the cover and piece
+// classification, and loop building. The files:
+//   zlevel.cpp            top-level flow (zlevel_contours): pruning grid, regions, active
+//                         curves, crossings, splits
+//   zlevel_regions.cpp    regions of offset elements and their candidate curves
+//   zlevel_intersect.cpp  curve evaluation and curve-curve crossings
+//   zlevel_cover.cpp      uncovered runs, tangent joints, piece classification
+//   zlevel_loops.cpp      linking kept pieces into loops, junctions, canonical output
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "kernels/geom/vec.hpp"
@@ -108,6 +118,8 @@ double curve_param(const Curve& c, const Vec2& x);
 // Implicit function of the curve's full line / circle / ellipse at x, and its gradient.
 double curve_implicit(const Curve& c, const Vec2& x, double zc, Vec2* grad = nullptr);
 void finish_box(Curve& c);
+// The part [s0, s1] of curve c as a curve of its own (same geometry, ends shared).
+Curve sub_curve(const Curve& c, double s0, double s1);
 
 struct Hit {
   Vec2 p;
@@ -123,7 +135,64 @@ void intersect_curves(const Curve& C, const Curve& D, const Level& lv, std::vect
 // the overlap as the parameter interval [d0, d1] on D. Ellipses are not compared (false).
 bool coincident_overlap(const Curve& C, const Curve& D, double& d0, double& d1);
 
-// ---- loops (zlevel_loops.cpp) ----
+// ---- pruning grid (built in zlevel.cpp) ----
+
+// Uniform grid over the candidates' boxes. A cell is interior when it lies (by
+// tol::kZLevelCellMargin) inside one region: it is in the interior of U, no piece of the
+// boundary passes through it. `sum` counts the other (open) cells for box queries.
+struct Grid {
+  double x0 = 0, y0 = 0, cell = 1;
+  int nx = 1, ny = 1;
+  std::vector<std::uint8_t> interior;
+  std::vector<std::uint32_t> sum;  // (nx + 1) x (ny + 1): open cells in [0, i) x [0, j)
+
+  int ix(double x) const { return std::clamp(int(std::floor((x - x0) / cell)), 0, nx - 1); }
+  int iy(double y) const { return std::clamp(int(std::floor((y - y0) / cell)), 0, ny - 1); }
+  double gx(int i) const { return x0 + i * cell; }
+  double gy(int j) const { return y0 + j * cell; }
+  int at(const Vec2& p) const { return iy(p.y()) * nx + ix(p.x()); }
+  void range(const double* b, int& i0, int& j0, int& i1, int& j1) const {
+    i0 = ix(b[0]);
+    j0 = iy(b[1]);
+    i1 = ix(b[2]);
+    j1 = iy(b[3]);
+  }
+  bool any_open(const double* b) const {
+    if (!(b[0] <= b[2]) || !(b[1] <= b[3])) return false;
+    int i0, j0, i1, j1;
+    range(b, i0, j0, i1, j1);
+    const int w = nx + 1;
+    return sum[(j1 + 1) * w + i1 + 1] - sum[j0 * w + i1 + 1] - sum[(j1 + 1) * w + i0] +
+               sum[j0 * w + i0] >
+           0;
+  }
+};
+
+// Compressed lists of ids per open cell (count, scan, fill).
+struct CellLists {
+  std::vector<std::uint32_t> start, ids;
+};
+
+using Box4f = std::array<float, 4>;
+
+// Box rounded outwards to floats (compact copies for scans over many regions).
+inline Box4f outward_box(const double* b) {
+  return {std::nextafter(float(b[0]), -INFINITY), std::nextafter(float(b[1]), -INFINITY),
+          std::nextafter(float(b[2]), INFINITY), std::nextafter(float(b[3]), INFINITY)};
+}
+
+// ---- cover and classification (zlevel_cover.cpp) ----
+
+// A point splitting act[curve] at parameter s. At a crossing of two lines, `other` is the
+// other line's region and `enter` +1 when the curve runs into it past p, -1 when out of it
+// (exact signs: the lines are not parallel); kNone and 0 elsewhere.
+struct Split {
+  std::uint32_t curve;
+  double s;
+  Vec2 p;
+  std::uint32_t other = kNone;
+  std::int8_t enter = 0;
+};
 
 // A piece of curves[curve] on the boundary of U, parameters s0 < s1, ends a and b.
 struct KeptPiece {
@@ -131,6 +200,39 @@ struct KeptPiece {
   double s0, s1;
   Vec2 a, b;
 };
+
+// Tangent joints are split explicitly; crossings between a facet's clip line and its own
+// edges' and vertices' curves, or a capsule side and its own end circles, are only those.
+// True for such a pair of regions: their curves are not intersected.
+bool structural_pair(const OffsetElements& el, const Region& p, const Region& q);
+
+// Appends to `runs` the parameter intervals of curve c that are not certified inside U: c is
+// cut into sub-pieces of about a cell; one is certified when it lies in interior cells or its
+// hull (ends and, for arcs, the tangents' crossing) lies strictly inside one region other
+// than c's own. Crossings in certified parts cannot be on the boundary of U. `cells` lists
+// the regions per open cell, `rbox` their boxes as outward_box.
+void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
+                    const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
+                    const Level& lv, std::vector<std::pair<double, double>>& runs);
+
+// Appends the tangent joints as splits: each on the nearest active curve (within 1e-6 mm,
+// parameter in range) of the joint's target element, else of alt[0], alt[1]. act_begin[g]
+// is region g's first active curve (act is in region order).
+void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& regions,
+                  const std::vector<Curve>& act, const std::vector<std::uint32_t>& act_begin,
+                  std::vector<Split>& splits);
+
+// Appends to `kept` the pieces between consecutive splits (sorted by curve, s, point) of
+// the active curves that lie on the boundary of U; `curves` are the untrimmed candidate
+// curves (G.curve_begin..curve_end), `region_cells` the regions per open cell. Counts
+// st.pieces.
+void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>& act,
+                     const std::vector<Curve>& curves, const std::vector<Region>& regions,
+                     const std::vector<Box4f>& rbox, const Grid& grid,
+                     const CellLists& region_cells, const Level& lv, const ZLevelParams& params,
+                     ZLevelStats& st, std::vector<KeptPiece>& kept);
+
+// ---- loops (zlevel_loops.cpp) ----
 
 // Links the pieces into closed loops (ends within `link`), merges runs of one element's
 // curve, classifies junctions and writes the canonical contours into out.

@@ -1,4 +1,5 @@
-// Curve evaluation and curve-curve crossings for the z-level contours (zlevel_detail.hpp).
+// Curve evaluation, sub-curves and curve-curve crossings for the z-level contours
+// (zlevel_detail.hpp).
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -297,6 +298,22 @@ void finish_box(Curve& c) {
     c.box[2] = std::max(c.box[2], t.x());
     c.box[3] = std::max(c.box[3], t.y());
   }
+}
+
+Curve sub_curve(const Curve& c, double s0, double s1) {
+  if (s0 == 0 && s1 == c.len) return c;
+  Curve r = c;
+  r.a = s0 == 0 ? c.a : curve_point(c, s0);
+  r.b = s1 == c.len ? c.b : curve_point(c, s1);
+  r.len = s1 - s0;
+  if (c.kind != CurveKind::kLine) {
+    const double sn = std::sin(s0), cs = std::cos(s0);
+    r.e1 = cs * c.e1 + sn * c.e2;
+    r.e2 = -sn * c.e1 + cs * c.e2;
+    r.t0 = c.t0 + s0;
+  }
+  finish_box(r);
+  return r;
 }
 
 bool coincident_overlap(const Curve& C, const Curve& D, double& d0, double& d1) {
