@@ -15,13 +15,13 @@
 //      h = d sin(thA) sin(thB) / sin(thA + thB) exceeds `tolerance` is refined by the exact
 //      crease point on an intermediate drive plane (the local intersection of the two offset
 //      elements, found by the exact envelope of that plane near the chord), recursively;
-//   4. safety: every chord is checked against the point drop-cutter (Embree, exact in
-//      double) at samples a tenth of the interval apart; a chord dipping by more than
-//      max(10 tolerance, 0.05 mm) has left the crease (two creases the refinement could not
-//      bridge) and the piece is split there; smaller dips are lifted; then the ball is swept
-//      along every chord exactly (engine/surface_check.hpp lift_swept: dips between the
-//      samples are lifted too; a chord that would need more than that lift is split off),
-//      so the path never gouges (to 1e-7 mm);
+//   4. safety: the ball is swept along every chord exactly (engine/surface_check.hpp
+//      lift_swept, MeshDistance::march with radius R - 1e-7); a chord whose ball touches
+//      the part is lifted at both ends, first by its largest drop-cutter deficit at samples
+//      a tenth of the interval apart, then in doubling steps until clear; a chord that
+//      would need more than max(10 tolerance, 0.05 mm) has left the crease (two creases the
+//      refinement could not bridge, or a wall in the way) and the piece is split there, so
+//      the path never gouges (to 1e-7 mm);
 //   5. pieces closer than `merge_distance` end to end are joined, pieces shorter than
 //      `min_length` dropped, and the rest ordered and oriented greedily to shorten the air
 //      moves between them. With a cut `direction` (climb or conventional, spindle M3:
