@@ -8,6 +8,8 @@
 #include <numeric>
 #include <unordered_map>
 
+#include "kernels/geom/tolerance.hpp"
+
 namespace ncpath {
 
 double bicontact_angle(const Vec3& b1, const Vec3& b2) {
@@ -43,7 +45,9 @@ bool pencil_keep(const PencilCandidate& c, const bool scanned[3]) {
   for (std::uint8_t f = 0; f < 3; ++f) {
     if (f == c.family || !scanned[f]) continue;
     const double other = std::abs(t.dot(layer_normal(f)));
-    if (other > own || (other == own && f < c.family)) return false;
+    if (other > own + tol::kPencilFamilyTie ||
+        (std::abs(other - own) <= tol::kPencilFamilyTie && f < c.family))
+      return false;
   }
   return true;
 }

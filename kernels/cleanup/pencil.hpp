@@ -55,13 +55,14 @@ double chord_error(const Vec3& a, const Vec3& ta, const Vec3& b, const Vec3& tb)
 struct PencilLinkParams {
   double max_gap = 1.0;   // mm: B within this of where A's tangent meets B's layer
   double min_cos = 0.7;   // tangents at A and B within acos(min_cos) of each other
-  double family_margin = 0.0;  // see pencil_keep
 };
 
 // Whether a pencil point is kept in its family: its crease crosses the family's layers at
-// least as steeply as those of every other scanned family (|t . n|, ties to the lower
-// family), so that each stretch of crease is traced once, by the layers that cut it best.
-// `scanned[f]` tells which families were scanned.
+// least as steeply as those of every other scanned family (|t . n|; within
+// tol::kPencilFamilyTie of each other it is a tie, won by the lower family, so that the points
+// of one crease at 45 degrees, whose tangents differ by rounding from point to point, all go
+// to one family), so that each stretch of crease is traced once, by the layers that cut it
+// best. `scanned[f]` tells which families were scanned.
 bool pencil_keep(const PencilCandidate& c, const bool scanned[3]);
 
 // Links points of one family on consecutive layers (layer k to k + 1) by mutual best match:

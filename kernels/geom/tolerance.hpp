@@ -284,6 +284,11 @@ inline constexpr double kZLevelFlatSlope = 1e-12;
 
 // ---- Clean-up paths (kernels/cleanup/*) ----
 
+// Dimensionless (difference of |t . n| between two layer families). pencil_keep counts
+// crossings this close as a tie (won by the lower family): rounding in the bi-contact vectors
+// (~1e-15) must not split a crease at 45 degrees between the x and y lines.
+inline constexpr double kPencilFamilyTie = 1e-9;
+
 // Dimensionless (mean lateral component of a crease's material vector along a path). A path
 // whose cut-side score is within this times its xy length of 0 has no material side: a
 // symmetric V-groove (b1 + b2 vertical to rounding, ~1e-16) or a vertical corner (no xy
