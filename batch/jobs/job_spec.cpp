@@ -244,13 +244,7 @@ void parse_raster_params(Keys& k, RasterParams& p) {
   k.number("min_step", p.min_step);
   double floor_z;
   if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
-  double chunk;
-  if (k.number("chunk_lines", chunk)) {
-    if (chunk >= 1 && chunk <= 1e6 && chunk == static_cast<std::uint32_t>(chunk))
-      p.chunk_lines = static_cast<std::uint32_t>(chunk);
-    else
-      k.fail("chunk_lines", "must be a whole number >= 1");
-  }
+  k.whole_number("chunk_lines", p.chunk_lines);
   k.number("strip_height", p.strip_height);
   k.number("bin_width", p.bin_width);
 }
@@ -267,13 +261,7 @@ void parse_scan_params(Keys& k, ScanParams& p) {
     p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
   double floor_z;
   if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
-  double chunk;
-  if (k.number("chunk_planes", chunk)) {
-    if (chunk >= 1 && chunk <= 1e6 && chunk == static_cast<std::uint32_t>(chunk))
-      p.chunk_planes = static_cast<std::uint32_t>(chunk);
-    else
-      k.fail("chunk_planes", "must be a whole number >= 1");
-  }
+  k.whole_number("chunk_planes", p.chunk_planes);
 }
 
 // stepover: a number (mm) or a string percentage of the tool diameter. False when absent.

@@ -28,13 +28,7 @@ void parse_zlevel_params(Keys& k, ZLevelOpParams& p) {
   k.number_list("levels", p.levels);
   k.number("step_down", p.step_down);
   k.number("tolerance", p.tolerance);
-  double chunk;
-  if (k.number("chunk_levels", chunk)) {
-    if (chunk >= 1 && chunk <= 1e6 && chunk == static_cast<std::uint32_t>(chunk))
-      p.chunk_levels = static_cast<std::uint32_t>(chunk);
-    else
-      k.fail("chunk_levels", "must be a whole number >= 1");
-  }
+  k.whole_number("chunk_levels", p.chunk_levels);
   if (k.error.empty())
     k.error =
         check_zlevel_choice(has_levels, has_step_down, p, "'params.levels'", "'params.step_down'");
@@ -134,13 +128,7 @@ void parse_fillet_params(Keys& k, const Cutter& tool, FilletParams& p,
       k.fail("reference", e);
   k.number("stepover", p.stepover);
   const bool has_scallop = k.number("scallop", p.scallop);
-  double passes;
-  if (k.number("max_passes", passes)) {
-    if (passes >= 1 && passes <= 1e6 && passes == static_cast<std::uint32_t>(passes))
-      p.max_passes = static_cast<std::uint32_t>(passes);
-    else
-      k.fail("max_passes", "must be a whole number >= 1");
-  }
+  k.whole_number("max_passes", p.max_passes);
   parse_pencil_search(k, p.pencil);
   parse_stock_direction(k, p.stock, p.direction);
   if (k.error.empty())

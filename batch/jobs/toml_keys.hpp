@@ -5,6 +5,7 @@
 // number"). Internal to the batch library: job_spec.cpp and the parsers of operations'
 // parameters (mesh_op_params.cpp).
 #include <cstddef>
+#include <cstdint>
 #include <set>
 #include <string>
 #include <utility>
@@ -55,6 +56,17 @@ class Keys {
       out[i] = *v;
     }
     return true;
+  }
+  // A count (chunk sizes, passes): a whole number from 1 to 1e6. False when absent or refused.
+  bool whole_number(const char* key, std::uint32_t& out) {
+    double v;
+    if (!number(key, v)) return false;
+    if (v >= 1 && v <= 1e6 && v == static_cast<std::uint32_t>(v)) {
+      out = static_cast<std::uint32_t>(v);
+      return true;
+    }
+    fail(key, "must be a whole number >= 1");
+    return false;
   }
   // An array of any length (possibly empty) of numbers.
   bool number_list(const char* key, std::vector<double>& out) {

@@ -1,12 +1,12 @@
 // Fillet-cut options (engine/fillet.hpp): stock to leave and cut direction.
 //
-// Stock s on the filleted V-groove of fillet_test.cpp (flanks z = |x|, fillet radius rho = 3;
-// reference R_ref = 5, clean-up r = 1.5): both balls keep s from the part, so every pass puts
-// the clean-up ball's centre (tip + r z) at distance r + s from the mesh (brute force), and
-// the passes span from one reference contact to the other: the grown reference ball (R_ref
-// + s) touches the flanks, and the grown small ball, moved from its centre along a flank's
-// normal by (R_ref + s) - (r + s), has its centre at x = -+(R_ref - r) / sqrt 2 whatever s.
-// The passes are those of balls grown by s (R_ref + s, r + s, no stock) raised by s.
+// Stock s on the filleted V-groove of fillet_test.cpp (cleanup_test_meshes.hpp; flanks z = |x|,
+// fillet radius rho = 3; reference R_ref = 5, clean-up r = 1.5): both balls keep s from the part,
+// so every pass puts the clean-up ball's centre (tip + r z) at distance r + s from the mesh (brute
+// force), and the passes span from one reference contact to the other: the grown reference ball
+// (R_ref + s) touches the flanks, and the grown small ball, moved from its centre along a flank's
+// normal by (R_ref + s) - (r + s), has its centre at x = -+(R_ref - r) / sqrt 2 whatever s. The
+// passes are those of balls grown by s (R_ref + s, r + s, no stock) raised by s.
 //
 // Direction, spindle M3 (climb: the material on the right of travel), on a V-groove along y
 // with a steep flank z = 2x on x > 0 and a shallow one z = -x / 2 on x < 0 (90 degrees
@@ -17,38 +17,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
 
 #include "engine/fillet.hpp"
-#include "tests/kernels/scan/scan_test_support.hpp"
+#include "tests/engine/cleanup_test_meshes.hpp"
 
 namespace ncpath {
 namespace {
-
-// The filleted groove of fillet_test.cpp: flanks z = |x| for |x| >= rho / sqrt 2 up to
-// |x| = 10, joined by the circle of radius rho centred at (0, rho sqrt 2) in xz, along
-// y in [-8, 8]; n arc facets.
-TriangleMesh filleted_groove(double rho, int n) {
-  std::vector<Vec2> prof;  // (x, z)
-  prof.emplace_back(-10, 10);
-  const Vec2 c(0, rho * std::sqrt(2.0));
-  for (int i = 0; i <= n; ++i) {
-    const double a = -0.75 * std::numbers::pi + 0.5 * std::numbers::pi * i / n;
-    prof.push_back(c + rho * Vec2(std::cos(a), std::sin(a)));
-  }
-  prof.emplace_back(10, 10);
-  TriangleMesh m;
-  for (const Vec2& q : prof) {
-    m.vertices.emplace_back(q.x(), -8, q.y());
-    m.vertices.emplace_back(q.x(), 8, q.y());
-  }
-  for (std::uint32_t i = 0; i + 1 < prof.size(); ++i) {
-    const std::uint32_t a = 2 * i;
-    m.facets.push_back({a, a + 2, a + 3});
-    m.facets.push_back({a, a + 3, a + 1});
-  }
-  return m;
-}
 
 // Flanks z = 2x (x in [0, 5]) and z = -x / 2 (x in [-10, 0]), along y in [-8, 8].
 TriangleMesh lopsided_groove() {
@@ -58,17 +32,9 @@ TriangleMesh lopsided_groove() {
   return m;
 }
 
-double mesh_distance(const TriangleMesh& m, const Vec3& p) {
-  double d = INFINITY;
-  for (const auto& f : m.facets)
-    d = std::min(d, scan_test::point_triangle_distance(p, m.vertices[f[0]], m.vertices[f[1]],
-                                                       m.vertices[f[2]]));
-  return d;
-}
-
 TEST(FilletStock, PassesKeepTheStockFromTheFilletedGroove) {
   const double rho = 3, R_ref = 5, r = 1.5, s = 0.3;
-  const TriangleMesh mesh = filleted_groove(rho, 48);
+  const TriangleMesh mesh = test_meshes::filleted_groove(rho, 48);
   FilletParams p;
   p.reference_diameter = 2 * R_ref;
   p.stepover = 0.3;
@@ -85,13 +51,14 @@ TEST(FilletStock, PassesKeepTheStockFromTheFilletedGroove) {
     const auto& path = res.paths[k];
     for (std::size_t i = 0; i < path.size(); ++i) {
       const Vec3 c = path[i] + Vec3(0, 0, r);
-      const double d = mesh_distance(mesh, c);
+      const double d = test_meshes::point_mesh_distance(mesh, c);
       ASSERT_GE(d, r + s - 1e-6) << "closer than the stock at " << path[i].transpose();
       ASSERT_LE(d, r + s + 1e-6) << "not touching the stock at " << path[i].transpose();
       if (i + 1 < path.size())
         for (int j = 1; j < 8; ++j) {
           const Vec3 q = c + (path[i + 1] + Vec3(0, 0, r) - c) * (j / 8.0);
-          ASSERT_GE(mesh_distance(mesh, q), r + s - 1e-6) << "chord at " << q.transpose();
+          ASSERT_GE(test_meshes::point_mesh_distance(mesh, q), r + s - 1e-6)
+              << "chord at " << q.transpose();
         }
       x_min = std::min(x_min, path[i].x());
       x_max = std::max(x_max, path[i].x());
@@ -117,7 +84,7 @@ TEST(FilletStock, PassesKeepTheStockFromTheFilletedGroove) {
 }
 
 TEST(FilletStock, BadStockIsRefused) {
-  const TriangleMesh mesh = filleted_groove(3, 8);
+  const TriangleMesh mesh = test_meshes::filleted_groove(3, 8);
   FilletParams p;
   p.reference_diameter = 10;
   RunControl control;

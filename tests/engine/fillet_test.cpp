@@ -12,46 +12,14 @@
 #include <cmath>
 #include <numbers>
 
-#include "tests/kernels/scan/scan_test_support.hpp"
+#include "tests/engine/cleanup_test_meshes.hpp"
 
 namespace ncpath {
 namespace {
 
-// Flanks z = |x| for |x| >= rho / sqrt 2 up to |x| = 10, joined by the circle of radius rho
-// centred at (0, rho sqrt 2) in xz (tangent to both flanks), along y in [-8, 8]; n arc facets.
-TriangleMesh filleted_groove(double rho, int n) {
-  std::vector<Vec2> prof;  // (x, z)
-  prof.emplace_back(-10, 10);
-  const Vec2 c(0, rho * std::sqrt(2.0));
-  for (int i = 0; i <= n; ++i) {
-    const double a = -0.75 * std::numbers::pi + 0.5 * std::numbers::pi * i / n;  // -135..-45 deg
-    prof.push_back(c + rho * Vec2(std::cos(a), std::sin(a)));
-  }
-  prof.emplace_back(10, 10);
-  TriangleMesh m;
-  for (const Vec2& q : prof) {
-    m.vertices.emplace_back(q.x(), -8, q.y());
-    m.vertices.emplace_back(q.x(), 8, q.y());
-  }
-  for (std::uint32_t i = 0; i + 1 < prof.size(); ++i) {
-    const std::uint32_t a = 2 * i;
-    m.facets.push_back({a, a + 2, a + 3});
-    m.facets.push_back({a, a + 3, a + 1});
-  }
-  return m;
-}
-
-double mesh_distance(const TriangleMesh& m, const Vec3& p) {
-  double d = INFINITY;
-  for (const auto& f : m.facets)
-    d = std::min(d, scan_test::point_triangle_distance(p, m.vertices[f[0]], m.vertices[f[1]],
-                                                       m.vertices[f[2]]));
-  return d;
-}
-
 TEST(Fillet, CleansTheFilletTheReferenceBallLeft) {
   const double rho = 3, R_ref = 5, r = 1.5, h = 0.01;
-  const TriangleMesh mesh = filleted_groove(rho, 48);
+  const TriangleMesh mesh = test_meshes::filleted_groove(rho, 48);
   FilletParams p;
   p.reference_diameter = 2 * R_ref;
   p.scallop = h;
@@ -68,14 +36,15 @@ TEST(Fillet, CleansTheFilletTheReferenceBallLeft) {
     const auto& path = res.paths[k];
     for (std::size_t i = 0; i < path.size(); ++i) {
       const Vec3 c = path[i] + Vec3(0, 0, r);
-      const double d = mesh_distance(mesh, c);
+      const double d = test_meshes::point_mesh_distance(mesh, c);
       ASSERT_GE(d, r - 1e-6) << "gouge at " << path[i].transpose();
       ASSERT_LE(d, r + 1e-6) << "not touching at " << path[i].transpose();
       centres.push_back(c);
       if (i + 1 < path.size())
         for (int s = 1; s < 8; ++s) {
           const Vec3 q = c + (path[i + 1] + Vec3(0, 0, r) - c) * (s / 8.0);
-          ASSERT_GE(mesh_distance(mesh, q), r - 1e-6) << "chord gouge at " << q.transpose();
+          ASSERT_GE(test_meshes::point_mesh_distance(mesh, q), r - 1e-6)
+              << "chord gouge at " << q.transpose();
           centres.push_back(q);
         }
     }
@@ -98,7 +67,7 @@ TEST(Fillet, CleansTheFilletTheReferenceBallLeft) {
 }
 
 TEST(Fillet, RejectsBadInput) {
-  const TriangleMesh mesh = filleted_groove(3, 8);
+  const TriangleMesh mesh = test_meshes::filleted_groove(3, 8);
   FilletParams p;
   p.reference_diameter = 4;
   RunControl control;

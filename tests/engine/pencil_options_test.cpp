@@ -22,29 +22,10 @@
 
 #include "engine/pencil.hpp"
 #include "tests/engine/mesh_test_support.hpp"
+#include "tests/kernels/scan/scan_test_support.hpp"
 
 namespace ncpath {
 namespace {
-
-// The V-groove and the box pocket of pencil_test.cpp.
-TriangleMesh v_groove(double a) {
-  TriangleMesh m;
-  m.vertices = {{-10, -10, 10 * a}, {0, -10, 0}, {10, -10, 10 * a},
-                {-10, 10, 10 * a},  {0, 10, 0},  {10, 10, 10 * a}};
-  m.facets = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
-  return m;
-}
-
-TriangleMesh box_pocket() {
-  TriangleMesh m;
-  const double o = 10, i = 5, top = 3;
-  m.vertices = {{-o, -o, top}, {o, -o, top}, {o, o, top}, {-o, o, top}, {-i, -i, top}, {i, -i, top},
-                {i, i, top},   {-i, i, top}, {-i, -i, 0}, {i, -i, 0},   {i, i, 0},     {-i, i, 0}};
-  m.facets = {{0, 1, 5},  {0, 5, 4},  {1, 2, 6},  {1, 6, 5},   {2, 3, 7}, {2, 7, 6},
-              {3, 0, 4},  {3, 4, 7},  {8, 9, 10}, {8, 10, 11}, {4, 5, 9}, {4, 9, 8},
-              {5, 6, 10}, {5, 10, 9}, {6, 7, 11}, {6, 11, 10}, {7, 4, 8}, {7, 8, 11}};
-  return m;
-}
 
 // Tool tips lowered by s: the tips of the ball of radius R + s with the same centres.
 std::vector<std::vector<Vec3>> lowered(std::vector<std::vector<Vec3>> paths, double s) {
@@ -64,7 +45,7 @@ TEST(PencilStock, VGrooveAtTheHeightOfTheOffsetBall) {
       p.min_angle_deg = 30;
       p.stock = s;
       RunControl control;
-      const TriangleMesh mesh = v_groove(a);
+      const TriangleMesh mesh = scan_test::v_groove(a);
       const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
       ASSERT_EQ(r.paths.size(), 1u);
       const double z = (R + s) * std::sqrt(1 + a * a) - R;
@@ -89,7 +70,8 @@ TEST(PencilStock, AStockThatLeavesNoBallIsRefused) {
   for (double s : {-R, -R - 0.1, double(NAN), double(INFINITY)}) {
     PencilParams p;
     p.stock = s;
-    EXPECT_THROW(run_pencil(v_groove(1), ball_cutter(2 * R), p, control), std::invalid_argument)
+    EXPECT_THROW(run_pencil(scan_test::v_groove(1), ball_cutter(2 * R), p, control),
+                 std::invalid_argument)
         << s;
   }
   EXPECT_NE(validate_stock(-R, R).find("stock must be greater than minus the ball radius (-2.5"),
@@ -110,7 +92,7 @@ BoxRuns box_runs(double R) {
   p.interval = 0.5;
   p.step_down = 0.3;
   BoxRuns runs;
-  const TriangleMesh mesh = box_pocket();
+  const TriangleMesh mesh = scan_test::box_pocket();
   RunControl control;
   runs.any = run_pencil(mesh, ball_cutter(2 * R), p, control);
   p.direction = CutDirection::kClimb;

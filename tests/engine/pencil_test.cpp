@@ -19,27 +19,6 @@
 namespace ncpath {
 namespace {
 
-TriangleMesh v_groove(double a) {
-  TriangleMesh m;
-  m.vertices = {{-10, -10, 10 * a}, {0, -10, 0}, {10, -10, 10 * a},
-                {-10, 10, 10 * a},  {0, 10, 0},  {10, 10, 10 * a}};
-  m.facets = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
-  return m;
-}
-
-TriangleMesh box_pocket() {
-  TriangleMesh m;
-  const double o = 10, i = 5, top = 3;
-  m.vertices = {{-o, -o, top}, {o, -o, top}, {o, o, top}, {-o, o, top},
-                {-i, -i, top}, {i, -i, top}, {i, i, top}, {-i, i, top},
-                {-i, -i, 0},   {i, -i, 0},   {i, i, 0},   {-i, i, 0}};
-  m.facets = {{0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6},
-              {3, 0, 4}, {3, 4, 7}, {8, 9, 10}, {8, 10, 11},
-              {4, 5, 9}, {4, 9, 8}, {5, 6, 10}, {5, 10, 9}, {6, 7, 11}, {6, 11, 10},
-              {7, 4, 8}, {7, 8, 11}};
-  return m;
-}
-
 TEST(Pencil, VGrooveAboveAndBelowTheThreshold) {
   const double R = 2.5;
   PencilParams p;
@@ -49,7 +28,7 @@ TEST(Pencil, VGrooveAboveAndBelowTheThreshold) {
   for (double a : {1.0, 0.5, 0.2}) {
     const double beta = 2 * std::atan(a) * 180 / std::numbers::pi;  // 90, 53.1, 22.6 degrees
     RunControl control;
-    const TriangleMesh mesh = v_groove(a);
+    const TriangleMesh mesh = scan_test::v_groove(a);
     const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
     if (beta < p.min_angle_deg) {
       EXPECT_TRUE(r.paths.empty()) << "a " << a;
@@ -76,7 +55,7 @@ TEST(Pencil, BoxPocketFloorAndCornerCreases) {
   p.interval = 0.5;
   p.step_down = 0.3;
   RunControl control;
-  const TriangleMesh mesh = box_pocket();
+  const TriangleMesh mesh = scan_test::box_pocket();
   const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
   const double c = 5 - R;  // the ball centre's reach to the walls
   // Distance from q to the creases of the CL surface: the floor-wall lines (tip z 0, |x| or
@@ -138,9 +117,11 @@ TEST(Pencil, RejectsBadInput) {
   PencilParams p;
   RunControl control;
   p.min_angle_deg = 0;
-  EXPECT_THROW(run_pencil(v_groove(1), ball_cutter(5), p, control), std::invalid_argument);
+  EXPECT_THROW(run_pencil(scan_test::v_groove(1), ball_cutter(5), p, control),
+               std::invalid_argument);
   p = PencilParams{};
-  EXPECT_THROW(run_pencil(v_groove(1), flat_cutter(5), p, control), std::invalid_argument);
+  EXPECT_THROW(run_pencil(scan_test::v_groove(1), flat_cutter(5), p, control),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -123,15 +123,6 @@ TEST(Envelope, RandomTerrainEqualsDropCutter) {
   EXPECT_GE(checks, 6000);
 }
 
-// Two half-planes z = a |x| (a groove along y), 20 x 20 mm.
-TriangleMesh v_groove(double a) {
-  TriangleMesh m;
-  m.vertices = {{-10, -10, 10 * a}, {0, -10, 0}, {10, -10, 10 * a},
-                {-10, 10, 10 * a},  {0, 10, 0},  {10, 10, 10 * a}};
-  m.facets = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
-  return m;
-}
-
 std::vector<const CurveJunction*> concave(const PlaneCurve& c) {
   std::vector<const CurveJunction*> out;
   for (const CurveJunction& j : c.junctions)
@@ -156,21 +147,6 @@ TEST(Envelope, VGrooveSharpConcavePoint) {
     for (double x : {-5.0, -1.0, 2.0, 6.0})
       EXPECT_NEAR(curve_z(r, x), a * std::abs(x) + R * (n - 1), 1e-9) << "x " << x;
   }
-}
-
-// A 20 x 20 plate, top z = 3, with a 10 x 10 pocket of floor z = 0 and vertical walls.
-TriangleMesh box_pocket() {
-  TriangleMesh m;
-  const double o = 10, i = 5, top = 3;
-  m.vertices = {{-o, -o, top}, {o, -o, top}, {o, o, top}, {-o, o, top},   // 0-3 outer
-                {-i, -i, top}, {i, -i, top}, {i, i, top}, {-i, i, top},   // 4-7 rim
-                {-i, -i, 0},   {i, -i, 0},   {i, i, 0},   {-i, i, 0}};    // 8-11 floor
-  m.facets = {{0, 1, 5}, {0, 5, 4}, {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6},
-              {3, 0, 4}, {3, 4, 7},                                          // top ring
-              {8, 9, 10}, {8, 10, 11},                                       // floor
-              {4, 5, 9}, {4, 9, 8}, {5, 6, 10}, {5, 10, 9}, {6, 7, 11}, {6, 11, 10},
-              {7, 4, 8}, {7, 8, 11}};                                        // walls
-  return m;
 }
 
 TEST(Envelope, BoxPocketWallFloorCreases) {

@@ -1,7 +1,8 @@
 #pragma once
 // Shared by the scan kernel tests: brute-force geometry oracles (no kernel code), the
-// point drop-cutter over all facets, and random meshes (soups, terrains with a hole and a
-// non-manifold edge).
+// point drop-cutter over all facets, random meshes (soups, terrains with a hole and a
+// non-manifold edge) and analytic ones (a V-groove, a box pocket, a hemisphere), which the
+// engine's clean-up tests use too.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -121,6 +122,32 @@ inline TriangleMesh random_terrain(std::mt19937_64& rng, int n) {
   m.facets.erase(m.facets.begin() + std::ptrdiff_t(m.facets.size() / 2));
   m.vertices.emplace_back(5.0, 5.0, 6.0);
   m.facets.push_back({id(2, 2), id(3, 3), std::uint32_t(m.vertices.size() - 1)});
+  return m;
+}
+
+// ---- analytic meshes ----
+
+// Two half-planes z = a |x| (a groove along y), 20 x 20 mm.
+inline TriangleMesh v_groove(double a) {
+  TriangleMesh m;
+  m.vertices = {{-10, -10, 10 * a}, {0, -10, 0}, {10, -10, 10 * a},
+                {-10, 10, 10 * a},  {0, 10, 0},  {10, 10, 10 * a}};
+  m.facets = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+  return m;
+}
+
+// A 20 x 20 plate, top z = 3, with a 10 x 10 pocket of floor z = 0 and vertical walls.
+inline TriangleMesh box_pocket() {
+  TriangleMesh m;
+  const double o = 10, i = 5, top = 3;
+  m.vertices = {{-o, -o, top}, {o, -o, top}, {o, o, top}, {-o, o, top},  // 0-3 outer
+                {-i, -i, top}, {i, -i, top}, {i, i, top}, {-i, i, top},  // 4-7 rim
+                {-i, -i, 0},   {i, -i, 0},   {i, i, 0},   {-i, i, 0}};   // 8-11 floor
+  m.facets = {{0, 1, 5},  {0, 5, 4},   {1, 2, 6},  {1, 6, 5},
+              {2, 3, 7},  {2, 7, 6},   {3, 0, 4},  {3, 4, 7},  // top ring
+              {8, 9, 10}, {8, 10, 11},                         // floor
+              {4, 5, 9},  {4, 9, 8},   {5, 6, 10}, {5, 10, 9},
+              {6, 7, 11}, {6, 11, 10}, {7, 4, 8},  {7, 8, 11}};  // walls
   return m;
 }
 
