@@ -96,7 +96,8 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
   par::for_ranges(ne, 16384, [&](std::size_t b, std::size_t e) {
     classify_edges(sorted, key_facet, edge_start, std::uint32_t(b), std::uint32_t(e), el);
   });
-  if (coplanar == Coplanar::kMerge) share_coplanar_offsets(key_facet, edge_start, el);
+  if (coplanar != Coplanar::kKeep)
+    share_coplanar_offsets(key_facet, edge_start, el, coplanar == Coplanar::kVertical);
 
   collect_vertices(el);
   if (coplanar == Coplanar::kMerge) drop_straight_vertices(el);

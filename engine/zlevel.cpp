@@ -76,7 +76,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   const double R = cutter.radius;
 
   Stopwatch el_clock;
-  const OffsetElements el = build_offset_elements_parallel(mesh, R, false, Coplanar::kKeep);
+  const OffsetElements el = build_offset_elements_parallel(mesh, R, false, Coplanar::kVertical);
   if (el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
   st.facets = el.facet_count();
   st.edges = el.edge_count();

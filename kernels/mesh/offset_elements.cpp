@@ -316,7 +316,8 @@ void drop_straight_vertices(OffsetElements& el) {
 }
 
 std::size_t share_coplanar_offsets(std::span<const std::uint32_t> key_facet,
-                                   std::span<const std::uint32_t> edge_start, OffsetElements& el) {
+                                   std::span<const std::uint32_t> edge_start, OffsetElements& el,
+                                   bool vertical_only) {
   const std::size_t nf = el.facet_count(), ne = el.edge_count();
   // Facet adjacency through joinable edges (CSR).
   auto pair_of = [&](std::size_t e) {
@@ -328,6 +329,7 @@ std::size_t share_coplanar_offsets(std::span<const std::uint32_t> key_facet,
         !(el.edge_wedge[e][0].dot(el.edge_wedge[e][1]) < -0.5))
       return false;
     const auto f = pair_of(e);
+    if (vertical_only && !el.facet_vertical[f[0]]) return false;
     return el.facet_vertical[f[0]] == el.facet_vertical[f[1]];
   };
   std::vector<std::uint32_t> start(nf + 1, 0);
@@ -426,7 +428,8 @@ OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius,
   el.edge_wedge.resize(ne);
   el.edge_flat.resize(ne);
   classify_edges(sorted, key_facet, edge_start, 0, ne, el);
-  if (coplanar == Coplanar::kMerge) share_coplanar_offsets(key_facet, edge_start, el);
+  if (coplanar != Coplanar::kKeep)
+    share_coplanar_offsets(key_facet, edge_start, el, coplanar == Coplanar::kVertical);
   collect_vertices(el);
   if (coplanar == Coplanar::kMerge) drop_straight_vertices(el);
   return el;

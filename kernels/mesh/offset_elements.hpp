@@ -165,10 +165,13 @@ void classify_edges(std::span<const std::uint64_t> sorted_keys,
 // covered by the offset triangles), and collect_vertices() then drops the vertices inside
 // (all edges unreachable). Vertical facets form regions of their own (normals compared up to
 // sign, offset triangles untouched: they are never sliced): inside such a region every
-// point has a point of the region's boundary straight above it, whose elements are higher. key_facet / edge_start as for classify_edges, run after it over all edges.
-// Returns the number of edges dropped. Deterministic (regions grown in slot order).
+// point has a point of the region's boundary straight above it, whose elements are higher.
+// vertical_only: only regions of vertical facets (Coplanar::kVertical). key_facet /
+// edge_start as for classify_edges, run after it over all edges. Returns the number of edges
+// dropped. Deterministic (regions grown in slot order).
 std::size_t share_coplanar_offsets(std::span<const std::uint32_t> key_facet,
-                                   std::span<const std::uint32_t> edge_start, OffsetElements& el);
+                                   std::span<const std::uint32_t> edge_start, OffsetElements& el,
+                                   bool vertical_only = false);
 
 // A vertex inside a straight edge line (two ring points opposite within
 // tol::kCoplanarSine, e.g. a midpoint of a subdivided or CAD mesh) becomes unreachable: its
@@ -182,10 +185,14 @@ void drop_straight_vertices(OffsetElements& el);
 // edge_reachable and edge_wedge.
 void collect_vertices(OffsetElements& el);
 
-// Whether the builders merge coplanar regions (share_coplanar_offsets). The drive-plane scan
-// does; the z-level kernel keeps every element (its facet regions are unioned with the flat
-// edges' strips filling the rounding slivers between them).
-enum class Coplanar : std::uint8_t { kMerge, kKeep };
+// Whether the builders merge coplanar regions (share_coplanar_offsets; vertical_only: only
+// regions of vertical facets). The drive-plane scan merges all (kMerge). The z-level kernel
+// merges only vertical ones (kVertical): its facet regions are unioned with the flat edges'
+// strips filling the rounding slivers between them, but vertical facets have no region, and
+// an inner edge of a vertical region has its capsule inside the capsules of the region's
+// boundary straight above it (same xy, higher) — the walls' stacked edges all project onto
+// the wall's line. kKeep keeps every element.
+enum class Coplanar : std::uint8_t { kMerge, kVertical, kKeep };
 
 // Sequential reference build: facets, then unique edges (sorted by their vertex pair), then
 // referenced vertices (ascending index).
