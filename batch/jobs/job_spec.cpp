@@ -1,16 +1,21 @@
+// Batch files: the TOML document (output, threads, [[job]]) and each job table's own keys
+// (name, operation, input, surface, tool, transform, gcode). A job's `params` table goes to
+// its operation's parser and check (raster_scan_params, mesh_op_params, profile_op_params;
+// drop's one key, points, is read here). Also the text forms of the job-level keys the
+// command line shares: operation name, tool ("ball:5") and G-code dialect.
 #include "batch/jobs/job_spec.hpp"
 
 #include <charconv>
-#include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 
 #include <toml++/toml.h>
-#include <nlohmann/json.hpp>
 
 #include "batch/jobs/mesh_op_params.hpp"
+#include "batch/jobs/profile_op_params.hpp"
+#include "batch/jobs/raster_scan_params.hpp"
 #include "batch/jobs/toml_keys.hpp"
 
 namespace ncpath::jobs {
@@ -39,42 +44,6 @@ const char* operation_name(Operation op) {
   return "?";
 }
 
-std::string parse_families(const std::string& text, ScanFamilies& out) {
-  if (text == "x")
-    out = ScanFamilies::kX;
-  else if (text == "y")
-    out = ScanFamilies::kY;
-  else if (text == "both")
-    out = ScanFamilies::kBoth;
-  else
-    return "must be \"x\", \"y\" or \"both\", got \"" + text + "\"";
-  return "";
-}
-
-const char* families_name(ScanFamilies families) {
-  switch (families) {
-    case ScanFamilies::kX:
-      return "x";
-    case ScanFamilies::kY:
-      return "y";
-    case ScanFamilies::kBoth:
-      return "both";
-  }
-  return "?";
-}
-
-std::string parse_stepover(const std::string& text, const Cutter& tool, double& out) {
-  std::string t = text;
-  const bool percent = !t.empty() && t.back() == '%';
-  if (percent) t.pop_back();
-  double v = 0;
-  auto [ptr, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-  if (t.empty() || ec != std::errc() || ptr != t.data() + t.size())
-    return "stepover '" + text + "' is not a number of mm or a percentage like \"40%\"";
-  out = percent ? v / 100 * 2 * tool.radius : v;
-  return "";
-}
-
 std::string parse_dialect(const std::string& text, out::GcodeDialect& out) {
   if (text == "linuxcnc") {
     out = out::GcodeDialect::kLinuxCnc;
@@ -83,115 +52,6 @@ std::string parse_dialect(const std::string& text, out::GcodeDialect& out) {
   } else {
     return "G-code dialect must be \"linuxcnc\" or \"grbl\", got \"" + text + "\"";
   }
-  return "";
-}
-
-std::string validate(const OffsetParams& p) {
-  std::ostringstream os;
-  if (!(std::isfinite(p.stepover) && p.stepover > 0))
-    os << "stepover must be a positive number of mm, got " << p.stepover;
-  else if (!(std::isfinite(p.stock) && p.stock >= 0))
-    os << "stock must be >= 0 mm, got " << p.stock;
-  else if (!std::isfinite(p.depth))
-    os << "depth must be a number of mm";
-  else if (!(std::isfinite(p.tolerance) && p.tolerance > 0))
-    os << "tolerance must be a positive number of mm, got " << p.tolerance;
-  else if (!(std::isfinite(p.join_tolerance) && p.join_tolerance > 0))
-    os << "join_tolerance must be a positive number of mm, got " << p.join_tolerance;
-  return os.str();
-}
-
-namespace {
-
-bool non_negative(double v) { return std::isfinite(v) && v >= 0; }
-
-// The keys the linked pocket operations (pocket, pocket3d) share; "" or the first problem.
-std::string validate_pocket_common(double stock, double tolerance, double join_tolerance,
-                                   double clearance) {
-  std::ostringstream os;
-  if (!non_negative(stock))
-    os << "stock must be >= 0 mm, got " << stock;
-  else if (!(std::isfinite(tolerance) && tolerance > 0))
-    os << "tolerance must be a positive number of mm, got " << tolerance;
-  else if (!(std::isfinite(join_tolerance) && join_tolerance > 0))
-    os << "join_tolerance must be a positive number of mm, got " << join_tolerance;
-  else if (!non_negative(clearance))
-    os << "clearance must be >= 0 mm, got " << clearance;
-  return os.str();
-}
-
-}  // namespace
-
-std::string validate(const PocketParams& p, const Cutter& tool) {
-  std::ostringstream os;
-  if (!(std::isfinite(p.stepover) && p.stepover > 0))
-    os << "stepover must be a positive number of mm, got " << p.stepover;
-  else if (p.stepover > 2 * tool.radius)
-    os << "stepover " << p.stepover << " mm is larger than the tool diameter " << 2 * tool.radius
-       << " mm: material would be left between the loops (at most 100%)";
-  else if (!(std::isfinite(p.depth) && p.depth > 0))
-    os << "depth must be a positive number of mm below the top, got " << p.depth;
-  else if (!non_negative(p.stepdown))
-    os << "stepdown must be >= 0 mm (0 = one pass at full depth), got " << p.stepdown;
-  else if (std::string e =
-               validate_pocket_common(p.stock, p.tolerance, p.join_tolerance, p.clearance);
-           !e.empty())
-    return e;
-  else if (!non_negative(p.helix_radius))
-    os << "helix_radius must be >= 0 mm (0 = half the tool radius), got " << p.helix_radius;
-  else if (!(std::isfinite(p.ramp_angle) && p.ramp_angle > 0 && p.ramp_angle < 90))
-    os << "ramp_angle must be in (0, 90) degrees, got " << p.ramp_angle;
-  return os.str();
-}
-
-std::string validate(const Pocket3dJobParams& p, const Cutter& tool) {
-  std::ostringstream os;
-  if (tool.type != CutterType::kBall)
-    os << "pocket3d needs a ball-end mill (ball:D): the path is planned for a ball of radius "
-          "D/2 touching the sculptured bottom; got a "
-       << cutter_type_name(tool.type) << " cutter";
-  else if (!(std::isfinite(p.scallop) && p.scallop > 0 && p.scallop < tool.radius))
-    os << "scallop must be a cusp height in mm between 0 and the ball radius " << tool.radius
-       << " mm, got " << p.scallop;
-  else if (!(std::isfinite(p.eps) && p.eps > 0))
-    os << "eps (plan tolerance) must be a positive number of mm, got " << p.eps;
-  else if (!(std::isfinite(p.delta) && p.delta > 0))
-    os << "delta (surface tolerance) must be a positive number of mm, got " << p.delta;
-  else if (std::string e =
-               validate_pocket_common(p.stock, p.tolerance, p.join_tolerance, p.clearance);
-           !e.empty())
-    return e;
-  else if (!non_negative(p.min_interval))
-    os << "min_interval must be >= 0 mm (0 = a hundredth of the ball radius), got "
-       << p.min_interval;
-  return os.str();
-}
-
-const char* order_name(CutOrder order) {
-  return order == CutOrder::kOutward ? "outward" : "inward";
-}
-
-const char* milling_name(Milling milling) {
-  return milling == Milling::kClimb ? "climb" : "conventional";
-}
-
-std::string parse_order(const std::string& text, CutOrder& out) {
-  if (text == "outward")
-    out = CutOrder::kOutward;
-  else if (text == "inward")
-    out = CutOrder::kInward;
-  else
-    return "must be \"outward\" or \"inward\", got \"" + text + "\"";
-  return "";
-}
-
-std::string parse_milling(const std::string& text, Milling& out) {
-  if (text == "climb")
-    out = Milling::kClimb;
-  else if (text == "conventional")
-    out = Milling::kConventional;
-  else
-    return "must be \"climb\" or \"conventional\", got \"" + text + "\"";
   return "";
 }
 
@@ -223,103 +83,6 @@ std::string parse_tool(const std::string& text, Cutter& out) {
 }
 
 namespace {
-
-void parse_raster_params(Keys& k, RasterParams& p) {
-  std::string dir;
-  if (k.string("direction", dir)) {
-    if (dir == "x")
-      p.direction = ScanDirection::kX;
-    else if (dir == "y")
-      p.direction = ScanDirection::kY;
-    else
-      k.fail("direction", "must be \"x\" or \"y\", got \"" + dir + "\"");
-  }
-  k.number("interval", p.interval);
-  k.number("step", p.step);
-  k.number("margin", p.margin);
-  double rect[4];
-  if (k.numbers("rect", 4, rect))
-    p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
-  k.number("adaptive_tolerance", p.adaptive_tolerance);
-  k.number("min_step", p.min_step);
-  double floor_z;
-  if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
-  k.whole_number("chunk_lines", p.chunk_lines);
-  k.number("strip_height", p.strip_height);
-  k.number("bin_width", p.bin_width);
-}
-
-void parse_scan_params(Keys& k, ScanParams& p) {
-  std::string families;
-  if (k.string("families", families))
-    if (std::string e = parse_families(families, p.families); !e.empty()) k.fail("families", e);
-  k.number("interval", p.interval);
-  k.number("tolerance", p.tolerance);
-  k.number("margin", p.margin);
-  double rect[4];
-  if (k.numbers("rect", 4, rect))
-    p.rect = std::array<double, 4>{rect[0], rect[1], rect[2], rect[3]};
-  double floor_z;
-  if (k.number("floor_z", floor_z)) p.floor_z = floor_z;
-  k.whole_number("chunk_planes", p.chunk_planes);
-}
-
-// stepover: a number (mm) or a string percentage of the tool diameter. False when absent.
-bool parse_stepover_key(Keys& k, const Cutter& tool, double& out) {
-  if (!k.is_string("stepover")) return k.number("stepover", out);
-  std::string text;
-  if (k.string("stepover", text))
-    if (std::string e = parse_stepover(text, tool, out); !e.empty()) k.fail("stepover", e);
-  return true;
-}
-
-void parse_offset_params(Keys& k, JobSpec& job) {
-  OffsetParams& p = job.offset;
-  if (!parse_stepover_key(k, job.tool, p.stepover))
-    k.fail("stepover", "is required (mm, or a percentage of the tool diameter like \"40%\")");
-  k.number("stock", p.stock);
-  k.number("depth", p.depth);
-  k.number("tolerance", p.tolerance);
-  k.number("join_tolerance", p.join_tolerance);
-}
-
-// order and milling of the linked pocket operations.
-void parse_order_milling(Keys& k, CutOrder& order, Milling& milling) {
-  std::string text;
-  if (k.string("order", text))
-    if (std::string e = parse_order(text, order); !e.empty()) k.fail("order", e);
-  if (k.string("milling", text))
-    if (std::string e = parse_milling(text, milling); !e.empty()) k.fail("milling", e);
-}
-
-void parse_pocket_params(Keys& k, JobSpec& job) {
-  PocketParams& p = job.pocket;
-  parse_stepover_key(k, job.tool, p.stepover);  // absent: the default set by parse_job
-  k.number("stock", p.stock);
-  if (!k.number("depth", p.depth) && k.error.empty())
-    k.fail("depth", "is required for a pocket job (mm below the top, > 0)");
-  k.number("stepdown", p.stepdown);
-  k.number("tolerance", p.tolerance);
-  k.number("join_tolerance", p.join_tolerance);
-  parse_order_milling(k, p.order, p.milling);
-  k.number("helix_radius", p.helix_radius);
-  k.number("ramp_angle", p.ramp_angle);
-  k.number("clearance", p.clearance);
-}
-
-void parse_pocket3d_params(Keys& k, JobSpec& job) {
-  Pocket3dJobParams& p = job.pocket3d;
-  if (!k.number("scallop", p.scallop) && k.error.empty())
-    k.fail("scallop", "is required for a pocket3d job (cusp height between passes, mm)");
-  k.number("eps", p.eps);
-  k.number("delta", p.delta);
-  k.number("stock", p.stock);
-  if (!k.number("tolerance", p.tolerance)) p.tolerance = default_pocket3d_tolerance(p.eps);
-  k.number("join_tolerance", p.join_tolerance);
-  parse_order_milling(k, p.order, p.milling);
-  k.number("clearance", p.clearance);
-  k.number("min_interval", p.min_interval);
-}
 
 JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem::path& base) {
   JobSpec job;
@@ -511,7 +274,8 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
     if (!names.insert(job.name).second) {
       job.error = "job name '" + job.name + "' is used twice";
       job.error_status = "invalid_parameter";
-      job.name += "#" + std::to_string(i + 1);
+      job.name += "#";
+      job.name += std::to_string(i + 1);
     }
     b.jobs.push_back(std::move(job));
   }
@@ -524,92 +288,6 @@ BatchSpec parse_batch_file(const std::filesystem::path& path) {
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_batch_text(ss.str(), path.parent_path(), path.string());
-}
-
-std::string tool_json(const Cutter& c) {
-  nlohmann::ordered_json j;
-  j["type"] = cutter_type_name(c.type);
-  j["diameter_mm"] = 2 * c.radius;
-  j["corner_radius_mm"] = c.corner_radius;
-  return j.dump();
-}
-
-std::string params_json(const JobSpec& job) {
-  nlohmann::ordered_json j;
-  j["operation"] = operation_name(job.operation);
-  nlohmann::ordered_json t;
-  t["scale"] = job.transform.scale;
-  t["translate"] = {job.transform.translate.x(), job.transform.translate.y(),
-                    job.transform.translate.z()};
-  t["fit_xy"] = job.transform.fit_xy_mm ? nlohmann::ordered_json(*job.transform.fit_xy_mm)
-                                        : nlohmann::ordered_json(nullptr);
-  j["transform"] = t;
-  if (job.operation == Operation::kRaster) {
-    const RasterParams& p = job.raster;
-    j["direction"] = p.direction == ScanDirection::kX ? "x" : "y";
-    j["interval"] = p.interval;
-    j["step"] = p.step;
-    j["margin"] = p.margin;
-    j["rect"] = p.rect ? nlohmann::ordered_json(*p.rect) : nlohmann::ordered_json(nullptr);
-    j["adaptive_tolerance"] = p.adaptive_tolerance;
-    j["min_step"] = p.min_step;
-    j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
-    j["chunk_lines"] = p.chunk_lines;
-    j["strip_height"] = p.strip_height;
-    j["bin_width"] = p.bin_width;
-  } else if (job.operation == Operation::kScan) {
-    const ScanParams& p = job.scan;
-    j["families"] = families_name(p.families);
-    j["interval"] = p.interval;
-    j["tolerance"] = p.tolerance;
-    j["margin"] = p.margin;
-    j["rect"] = p.rect ? nlohmann::ordered_json(*p.rect) : nlohmann::ordered_json(nullptr);
-    j["floor_z"] = p.floor_z ? nlohmann::ordered_json(*p.floor_z) : nlohmann::ordered_json(nullptr);
-    j["chunk_planes"] = p.chunk_planes;
-  } else if (job.operation == Operation::kZLevel) {
-    zlevel_params_json(job.zlevel, j);
-  } else if (job.operation == Operation::kPencil) {
-    pencil_params_json(job.pencil, j);
-  } else if (job.operation == Operation::kFillet) {
-    fillet_params_json(job.fillet, job.fillet_reference, j);
-  } else if (job.operation == Operation::kOffset) {
-    j["stepover"] = job.offset.stepover;
-    j["stock"] = job.offset.stock;
-    j["depth"] = job.offset.depth;
-    j["tolerance"] = job.offset.tolerance;
-    j["join_tolerance"] = job.offset.join_tolerance;
-  } else if (job.operation == Operation::kPocket) {
-    const PocketParams& p = job.pocket;
-    j["stepover"] = p.stepover;
-    j["stock"] = p.stock;
-    j["depth"] = p.depth;
-    j["stepdown"] = p.stepdown;
-    j["tolerance"] = p.tolerance;
-    j["join_tolerance"] = p.join_tolerance;
-    j["order"] = order_name(p.order);
-    j["milling"] = milling_name(p.milling);
-    j["helix_radius"] = p.helix_radius;
-    j["ramp_angle"] = p.ramp_angle;
-    j["clearance"] = p.clearance;
-    j["safe_z"] = job.gcode_safe_z.value_or(kDefaultSafeAboveTop);
-  } else if (job.operation == Operation::kPocket3d) {
-    const Pocket3dJobParams& p = job.pocket3d;
-    j["surface"] = job.surface.string();
-    j["scallop"] = p.scallop;
-    j["eps"] = p.eps;
-    j["delta"] = p.delta;
-    j["stock"] = p.stock;
-    j["tolerance"] = p.tolerance;
-    j["join_tolerance"] = p.join_tolerance;
-    j["order"] = order_name(p.order);
-    j["milling"] = milling_name(p.milling);
-    j["clearance"] = p.clearance;
-    j["min_interval"] = p.min_interval;
-    j["safe_z"] = job.gcode_safe_z.value_or(kDefaultSafeAboveTop);
-  } else {
-    j["points"] = job.points.string();
-  }
-  return j.dump();
 }
 
 }  // namespace ncpath::jobs

@@ -151,6 +151,7 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
 const char* operation_name(Operation op);
 
 // "x", "y", "both" -> families; error message to follow the key's name, or "".
+// (In raster_scan_params.cpp.)
 std::string parse_families(const std::string& text, ScanFamilies& out);
 const char* families_name(ScanFamilies families);  // "x", "y", "both"
 
@@ -185,6 +186,8 @@ std::string validate_pencil(const PencilParams& params, const Cutter& tool);
 // \"up\""). (In mesh_op_params.cpp.)
 std::string parse_direction(const std::string& text, CutDirection& out);
 
+// The profile operations' keys, from parse_stepover to milling_name: in
+// profile_op_params.cpp.
 // "2.4" -> 2.4 mm; "40%" -> 40 % of the tool diameter. Error message or "".
 std::string parse_stepover(const std::string& text, const Cutter& tool, double& out_mm);
 // "" when usable, else a message naming the key.
@@ -203,6 +206,7 @@ const char* milling_name(Milling milling);  // "climb" / "conventional"
 std::string parse_dialect(const std::string& text, out::GcodeDialect& out);
 
 // The parameters of a job as JSON text, defaults included (HDF5 `params` attribute).
+// (This and tool_json in job_spec_json.cpp.)
 std::string params_json(const JobSpec& job);
 // The tool as JSON text: {"type":..., "diameter_mm":..., "corner_radius_mm":...}.
 std::string tool_json(const Cutter& tool);

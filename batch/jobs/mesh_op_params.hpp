@@ -1,7 +1,8 @@
 #pragma once
 // Parameters of the zlevel, pencil and fillet operations in batch files: reading the `params`
 // table, and writing them back as the JSON of the job's `params` attribute (defaults included).
-// Internal to the batch library (job_spec.cpp); the keys are listed in docs/cli.md.
+// Internal to the batch library (job_spec.cpp, job_spec_json.cpp); the keys are listed in
+// docs/cli.md.
 #include <nlohmann/json.hpp>
 
 #include "batch/jobs/toml_keys.hpp"

@@ -3,7 +3,7 @@
 // `gcode`): each read remembers its key, so that what is left over is reported as unknown,
 // and the first problem is kept as a message naming the key ("'params.interval' must be a
 // number"). Internal to the batch library: job_spec.cpp and the parsers of operations'
-// parameters (mesh_op_params.cpp).
+// parameters (mesh_op_params.cpp, profile_op_params.cpp, raster_scan_params.cpp).
 #include <cstddef>
 #include <cstdint>
 #include <set>
