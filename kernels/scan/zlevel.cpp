@@ -394,8 +394,8 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
                          cross2(D.dir, C.dir) != 0;
       const std::int8_t enter = !lines ? 0 : cross2(D.dir, C.dir) > 0 ? 1 : -1;
       for (const Hit& h : hits) {
-        splits.push_back({i, h.sc, h.p, lines ? D.region : kNone, enter});
-        splits.push_back({j, h.sd, h.p, lines ? C.region : kNone, std::int8_t(-enter)});
+        splits.push_back({i, h.sc, h.p, lines ? j : kNone, enter});
+        splits.push_back({j, h.sd, h.p, lines ? i : kNone, std::int8_t(-enter)});
       }
       st.crossings += hits.size();
     });

@@ -36,16 +36,20 @@
 // curve is cut into sub-pieces of about a cell; those lying in interior cells or strictly
 // inside one other region are dropped, and the curve is trimmed to the rest (crossings there
 // cannot be on the boundary); where curves coincide (the shadows of a wall's stacked edges
-// and vertices), only the lowest element id's is kept. The trimmed curves are split at their
-// exact crossings (closed form when a line is involved or for two circles; certified
+// and vertices; lines by the distance of their ends, their directions differ by rounding),
+// only the lowest element id's is kept. The trimmed curves are split at their exact
+// crossings (closed form when a line is involved or for two circles; certified
 // branch-and-bound root isolation on the arc parameter otherwise), each piece is kept when
 // it lies strictly inside no other region, and kept pieces are linked end to end
 // (tol::kZLevelLink) into loops. A piece lies on one side of each region's boundary: its
 // midpoint decides; within tol::kZLevelOnBoundary of the boundary its quarter points do (a
 // piece leaving a tangent joint, where a flat edge's ellipse has a radius of curvature up to
-// R / sin^2(slope)), then the orientation of a line crossing at its ends (clip lines of
-// nearly coplanar facets crossing at a grazing angle); else it is coincident (the lower
-// element id keeps a shared piece, pieces with regions on both sides are dropped).
+// R / sin^2(slope)), then the orientation of a line crossing at its ends, where that line
+// runs beside the piece (clip lines of nearly coplanar facets crossing at a grazing angle);
+// else pieces with regions on both sides are dropped; a piece leaving a tangent joint with
+// the region's curve (a short one stays within the tolerance) lies inside where it turns more
+// towards its region than that curve; otherwise (coincident curves, grazing crossings) the
+// lower element id keeps a shared piece.
 //
 // Contacts. On a capsule side or vertex circle where the element lies above the level
 // (ContourSeg::shadow), E jumps there (a wall or an overhang): the ball at the level does not

@@ -11,6 +11,41 @@
 
 namespace ncpath::zlevel_detail {
 
+namespace {
+
+// Which side of curve D the piece [s0, s1] of curve C lies on when it stays within `on` of D
+// (both with their regions on the left) because it leaves D at a tangent joint: 1 left
+// (inside D's region), -1 right; 0 when that does not decide. The piece's offset from D at its
+// midpoint is as small as its rounding there; from the piece's end nearer D, taken to be on D,
+// it is sin(theta) x + dk x^2 / 2 (x the midpoint's distance from that end, theta the angle
+// between the tangents, dk the curvatures' difference). Where the second-order term dominates,
+// the curve that turns more towards its region lies inside the other's, whichever piece of
+// the pair is asked: sign(dk). 0 where the curvatures agree (within `on` over a length R: the
+// curves coincide) or the first-order term dominates (a grazing crossing, whose place is
+// rounding there, or no joint at all).
+int tangent_departure_side(const Curve& C, double s0, double s1, const Curve& D, const Level& lv,
+                           double on) {
+  auto offset = [&](const Vec2& p) {
+    if (D.kind == CurveKind::kLine) return std::abs(cross2(D.dir, p - D.a));
+    Vec2 g;
+    const double f = curve_implicit(D, p, lv.zc, &g), gn = g.norm();
+    return gn > 0 ? std::abs(f) / gn : 0.0;
+  };
+  const Vec2 p0 = curve_point(C, s0), p1 = curve_point(C, s1);
+  const bool from0 = offset(p0) <= offset(p1);
+  const double se = from0 ? s0 : s1;
+  const Vec2& e = from0 ? p0 : p1;
+  const double sd = curve_param(D, e);
+  const double dk = curve_curvature(C, se) - curve_curvature(D, sd);
+  if (0.5 * std::abs(dk) * lv.R * lv.R <= on) return 0;
+  const Vec2 tc = curve_tangent(C, se).normalized(), td = curve_tangent(D, sd).normalized();
+  const double x = (curve_point(C, 0.5 * (s0 + s1)) - e).norm();
+  if (!(0.5 * std::abs(dk) * x > std::abs(cross2(td, tc)))) return 0;
+  return dk > 0 ? 1 : -1;
+}
+
+}  // namespace
+
 bool structural_pair(const OffsetElements& el, const Region& p, const Region& q) {
   const Region& a = p.kind < q.kind ? p : q;
   const Region& b = p.kind < q.kind ? q : p;
@@ -123,28 +158,45 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
                      const std::vector<Box4f>& rbox, const Grid& grid,
                      const CellLists& region_cells, const Level& lv, const ZLevelParams& params,
                      ZLevelStats& st, std::vector<KeptPiece>& kept) {
+  // G's candidate curve passing nearest to m, within params.on_boundary (kNone if none).
   auto emits_at = [&](const Region& G, const Vec2& m) {
+    std::uint32_t best = kNone;
+    double best_d = params.on_boundary;
     for (std::uint32_t c = G.curve_begin; c < G.curve_end; ++c) {
       const double s = curve_param(curves[c], m);
-      if (s >= -1e-9 && s <= curves[c].len + 1e-9 &&
-          (curve_point(curves[c], std::clamp(s, 0.0, curves[c].len)) - m).norm() <=
-              params.on_boundary)
-        return true;
+      if (!(s >= -1e-9 && s <= curves[c].len + 1e-9)) continue;
+      const double d = (curve_point(curves[c], std::clamp(s, 0.0, curves[c].len)) - m).norm();
+      if (d <= best_d) {
+        best_d = d;
+        best = c;
+      }
     }
-    return false;
+    return best;
   };
 
   // The side of region gj on which the piece from splits[k] to splits[k + 1] lies, from the
-  // orientation of line crossings with gj at its ends: -1 inside, 1 outside, 0 unknown.
+  // orientation of line crossings with gj at its ends: -1 inside, 1 outside, 0 unknown. A
+  // crossing tells the side of gj only where its line is gj's boundary beside the piece: at
+  // the piece's quarter point next to the crossing. A line that ends at the crossing and lies
+  // behind it (a capsule's chord ending at its shadow line, which the piece runs along) does
+  // not tell.
   auto crossing_side = [&](std::size_t k, std::uint32_t gj) {
     const std::uint32_t c = splits[k].curve;
+    const Curve& C = act[c];
     int side = 0;
-    auto vote = [&](int v) { side = side == 0 || side == v ? v : 2; };
+    auto vote = [&](const Split& sp, double f, int v) {
+      if (sp.other == kNone || sp.enter == 0 || act[sp.other].region != gj) return;
+      const Curve& D = act[sp.other];
+      const double sd =
+          curve_param(D, curve_point(C, splits[k].s + f * (splits[k + 1].s - splits[k].s)));
+      if (!(sd >= 0 && sd <= D.len)) return;
+      side = side == 0 || side == v ? v : 2;
+    };
     for (std::size_t q = k + 1; q-- > 0 && splits[q].curve == c && splits[q].s == splits[k].s;)
-      if (splits[q].other == gj && splits[q].enter != 0) vote(-splits[q].enter);
+      vote(splits[q], 0.25, -splits[q].enter);
     for (std::size_t q = k + 1;
          q < splits.size() && splits[q].curve == c && splits[q].s == splits[k + 1].s; ++q)
-      if (splits[q].other == gj && splits[q].enter != 0) vote(splits[q].enter);
+      vote(splits[q], 0.75, splits[q].enter);
     return side == 2 ? 0 : side;
   };
 
@@ -189,12 +241,21 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
           // grazing angle theta and stay within `on` of each other over on / theta.
           const int side = crossing_side(k, gj);
           if (side < 0) keep = false;
-          // Regions on both sides: inside U. Same side: the lower element id keeps the shared
-          // piece, provided it has a curve there (a capsule's end caps are its vertices').
+          // Regions on both sides: inside U. Same side, along G's curve D: a piece leaving a
+          // tangent joint with D stays within `on` of it over sqrt(2 on / dk), dk the
+          // curvatures' difference (where a sloping edge's shadow line on a wall turns into its
+          // ellipse while the next edge's shadow runs on): the curvatures tell its side.
+          // Otherwise (C and D coincide, or cross at a grazing angle) the lower element id
+          // keeps the shared piece. Without a curve of G there (a capsule's end caps are its
+          // vertices'): keep.
           if (side == 0) {
             const Vec2 t = curve_tangent(C, 0.5 * (s0.s + s1.s));
-            if (gout.dot(Vec2(t.y(), -t.x())) < 0 || (G.element < C.element && emits_at(G, m)))
+            if (gout.dot(Vec2(t.y(), -t.x())) < 0) {
               keep = false;
+            } else if (const std::uint32_t d = emits_at(G, m); d != kNone) {
+              const int dep = tangent_departure_side(C, s0.s, s1.s, curves[d], lv, on);
+              if (dep == 0 ? G.element < C.element : dep > 0) keep = false;
+            }
           }
         }
       }

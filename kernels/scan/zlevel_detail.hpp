@@ -113,6 +113,8 @@ void region_curves(const OffsetElements& el, const Region& g, std::uint32_t gi, 
 Vec2 curve_point(const Curve& c, double s);
 Vec2 curve_tangent(const Curve& c, double s);  // dp/ds
 double curve_speed(const Curve& c);            // bound of |dp/ds| and |d2p/ds2|
+// Signed curvature at s, 1/mm: 0 on lines, > 0 on arcs (they turn towards their region).
+double curve_curvature(const Curve& c, double s);
 // Parameter of a point on or next to the curve (unclamped).
 double curve_param(const Curve& c, const Vec2& x);
 // Implicit function of the curve's full line / circle / ellipse at x, and its gradient.
@@ -184,8 +186,8 @@ inline Box4f outward_box(const double* b) {
 // ---- cover and classification (zlevel_cover.cpp) ----
 
 // A point splitting act[curve] at parameter s. At a crossing of two lines, `other` is the
-// other line's region and `enter` +1 when the curve runs into it past p, -1 when out of it
-// (exact signs: the lines are not parallel); kNone and 0 elsewhere.
+// other line (its index in act) and `enter` +1 when the curve runs into its region's side
+// past p, -1 when out of it (exact signs: the lines are not parallel); kNone and 0 elsewhere.
 struct Split {
   std::uint32_t curve;
   double s;

@@ -72,20 +72,29 @@ void coincident_hits(const Curve& C, const Curve& D, std::vector<Hit>& out) {
   }
 }
 
-void line_line(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
-               bool& coincident) {
-  const double denom = cross2(C.dir, D.dir);
-  const double q0 = cross2(D.dir, C.a - D.a);  // D's signed distance of C.a
-  if (std::abs(denom) <= 1e-15) {
-    if (std::abs(q0) <= tol::kZLevelOnBoundary &&
-        std::abs(cross2(D.dir, C.b - D.a)) <= tol::kZLevelOnBoundary) {
-      coincident = true;
-      coincident_hits(C, D, out);
-    }
-    (void)lv;
+// Lines C and D lie on one line along the shorter one: both ends of one of them lie within
+// tol::kZLevelOnBoundary of the other's line. Distances, not directions: the shadows of a
+// wall's stacked edges (horizontal and sloping, of different lengths) lie on one line, but
+// their directions, from different end points, differ by rounding (1e-14); such a
+// near-crossing's place and orientation are noise, and pieces classified by them dropped each
+// other in turn.
+bool lines_coincident(const Curve& C, const Curve& D) {
+  const double on = tol::kZLevelOnBoundary;
+  auto near = [on](const Curve& L, const Vec2& p) {
+    return std::abs(cross2(L.dir, p - L.a)) <= on;
+  };
+  return (near(D, C.a) && near(D, C.b)) || (near(C, D.a) && near(C, D.b));
+}
+
+void line_line(const Curve& C, const Curve& D, std::vector<Hit>& out, bool& coincident) {
+  if (lines_coincident(C, D)) {
+    coincident = true;
+    coincident_hits(C, D, out);
     return;
   }
-  const double t = q0 / denom;
+  const double denom = cross2(C.dir, D.dir);
+  if (!(std::abs(denom) > 1e-15)) return;
+  const double t = cross2(D.dir, C.a - D.a) / denom;
   add_hit(C, D, C.a + t * C.dir, t, out);
 }
 
@@ -238,6 +247,14 @@ double curve_speed(const Curve& c) {
   return c.kind == CurveKind::kLine ? 1.0 : c.e1.norm() + c.e2.norm();
 }
 
+double curve_curvature(const Curve& c, double s) {
+  if (c.kind == CurveKind::kLine) return 0;
+  const double sn = std::sin(s), cs = std::cos(s);
+  const Vec2 d1 = -sn * c.e1 + cs * c.e2, d2 = -cs * c.e1 - sn * c.e2;
+  const double v = d1.norm();
+  return cross2(d1, d2) / (v * v * v);
+}
+
 double curve_param(const Curve& c, const Vec2& x) {
   const Vec2 w = x - c.a;
   if (c.kind == CurveKind::kLine) return w.dot(c.dir);
@@ -320,10 +337,7 @@ bool coincident_overlap(const Curve& C, const Curve& D, double& d0, double& d1) 
   if (C.kind != D.kind) return false;
   const double on = tol::kZLevelOnBoundary;
   if (C.kind == CurveKind::kLine) {
-    // The test of line_line.
-    if (std::abs(cross2(C.dir, D.dir)) > 1e-15 || std::abs(cross2(D.dir, C.a - D.a)) > on ||
-        std::abs(cross2(D.dir, C.b - D.a)) > on)
-      return false;
+    if (!lines_coincident(C, D)) return false;  // the test of line_line
     const double ta = (C.a - D.a).dot(D.dir), tb = (C.b - D.a).dot(D.dir);
     d0 = std::max(0.0, std::min(ta, tb));
     d1 = std::min(D.len, std::max(ta, tb));
@@ -343,7 +357,7 @@ void intersect_curves(const Curve& C, const Curve& D, const Level& lv, std::vect
                       bool& coincident) {
   coincident = false;
   const bool lc = C.kind == CurveKind::kLine, ld = D.kind == CurveKind::kLine;
-  if (lc && ld) return line_line(C, D, lv, out, coincident);
+  if (lc && ld) return line_line(C, D, out, coincident);
   if (lc) return line_conic(C, D, lv, out);
   if (ld) {
     const std::size_t first = out.size();

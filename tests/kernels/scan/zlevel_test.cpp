@@ -4,7 +4,7 @@
 // soups and terrains: contour points on the brute-force drop-cutter surface at the level,
 // U on the left of every segment, point-in-contours equal to "drop >= level", bi-contact
 // vectors at distance R from their elements; the result does not depend on the candidates'
-// order.
+// order. The same oracles on a real CAD part (datasets/cache/meshes/anchor_dense.off).
 #include "tests/kernels/scan/scan_test_support.hpp"
 #include "kernels/scan/zlevel.hpp"
 
@@ -13,10 +13,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <random>
 
+#include "batch/io/mesh_reader.hpp"
 #include "kernels/cutters/drop_cutter.hpp"
+#include "kernels/mesh/mesh_transform.hpp"
 #include "kernels/mesh/offset_elements.hpp"
 
 namespace ncpath {
@@ -679,6 +682,37 @@ TEST(ZLevel, DegenerateGridTerrainMatchesDropCutter) {
   for (double z : {-1.25, 0.0, 0.5, 1.0, 1.75, 2.0, 3.0})
     checks += check_result(o, run(el, z), rng, -3, -3, 17, 17, 300, true);
   EXPECT_GT(checks, 2000);
+}
+
+// ---- a real part ----
+
+// CGAL's anchor_dense (a CAD part: vertical walls in many bands, flats), fit to 200 mm in xy
+// as the engine's jobs do, ball R 2.5, at levels that left open chains (regression):
+//  - a wall's stacked horizontal and sloping edges shadow one line, but their directions, from
+//    different end points, differ by rounding (1e-14): taken as lines crossing at that angle,
+//    their pieces dropped each other in turn (-40 and the step-down levels);
+//  - a sloping wall edge whose lower end lies 1e-5 mm below the ball centre's height: its
+//    capsule side is its shadow line and a 4e-5 mm chord ending on it; the chord's crossing
+//    with another edge's shadow (the wall's line) dropped that shadow's piece past it, which
+//    runs along the shadow line, not the chord (-30.6586);
+//  - a sloping wall edge's ellipse leaves its shadow line tangentially while the next edge's
+//    shadow runs on; a vertex circle crossing it 2e-5 mm further on left a piece within 1e-11
+//    of the wall's line, kept as shared (-62.38465574932556, a vertex's height).
+TEST(ZLevel, CadPartWallsCloseEveryLoop) {
+  const auto path =
+      std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes/anchor_dense.off";
+  ASSERT_TRUE(std::filesystem::exists(path))
+      << path << " is missing: run datasets/fetch-cgal-meshes.sh";
+  io::MeshReadResult in = io::read_mesh(path);
+  MeshTransform fit;
+  fit.fit_xy_mm = 200;
+  ASSERT_TRUE(apply_transform(fit, in.mesh).error.empty());
+  const OffsetElements el = build_offset_elements(in.mesh, 2.5, Coplanar::kKeep);
+  Oracle o(in.mesh, el);
+  std::mt19937_64 rng(15);
+  for (double z : {-40.0, 30.6586, 10.6586, 0.6586, -19.3414, -30.6586, -62.38465574932556}) {
+    check_result(o, run(el, z), rng, -104, -67, 104, 67, 200);
+  }
 }
 
 // ---- determinism and candidates ----
