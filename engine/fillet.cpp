@@ -209,15 +209,14 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
         reverse = reverse_for(p.direction, side);
       }
       if (reverse) std::reverse(pass.begin(), pass.end());
-      out.lifted += lift_above_surface(index, floor_z, spacing, pass);
-      // Exact between the samples (the lift doubles until clear: never cut).
+      // The ball swept along every chord (exact; a touching chord is lifted by its sampled
+      // deficits, then doubling until clear: never cut).
       out.lifted += lift_swept(distance, index, floor_z, rc, kNoLiftLimit, spacing, pass, 48);
       if (!out.polys.empty() && one_way) {
         out.polys.push_back({pass.front()});
         out.kinds.push_back(PathKind::kRapid);
       } else if (!out.polys.empty()) {
         std::vector<Vec3> link = {out.polys.back().back(), pass.front()};
-        out.lifted += lift_above_surface(index, floor_z, spacing, link);
         out.lifted += lift_swept(distance, index, floor_z, rc, kNoLiftLimit, spacing, link, 48);
         out.polys.push_back(std::move(link));
         out.kinds.push_back(PathKind::kLinkAtDepth);

@@ -17,8 +17,8 @@
 // 2 sqrt(2 r h - h^2)), measured at the widest point of the path.
 //
 // Output: per pencil path, passes zig-zag (pass 0 forward, pass 1 backward, ...) joined by
-// links at depth; chords are checked against the small ball's drop-cutter surface at samples,
-// then by the exact swept ball (lift_swept, no lift limit), and lifted
+// links at depth; every chord is checked by the exact swept ball (lift_swept, no lift limit;
+// a touching chord is lifted by its sampled drop-cutter deficits, then until clear)
 // (engine/surface_check.hpp); points the small ball cannot reach from above (under an
 // overhang) are dropped.
 //
