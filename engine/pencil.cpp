@@ -239,6 +239,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
         },
         control);
     st.levels = zs.levels;
+    st.zlevel_open_chains = zs.open_chains;
     st.zlevel_s = clock.seconds();
   }
   st.candidates = cand.size();

@@ -85,6 +85,7 @@ struct PencilPoint {
 
 struct PencilStats {
   std::uint64_t planes = 0, levels = 0;
+  std::uint64_t zlevel_open_chains = 0;  // z-level contours left open (their junctions lost)
   std::uint64_t candidates = 0;     // sharp-concave junctions seen
   std::uint64_t pencil_points = 0;  // with angle >= min_angle
   std::uint64_t kept_points = 0;    // after the family choice

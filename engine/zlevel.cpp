@@ -58,7 +58,7 @@ void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
 
 struct LevelOut {
   ZLevelChunk chunk;
-  std::uint64_t candidates = 0, open_chains = 0, holes = 0, points = 0;
+  std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
   std::uint64_t kinds[3] = {0, 0, 0};
 };
 
@@ -122,6 +122,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
         zlevel_contours(el, std::span<const std::uint32_t>(by_top.data(), n), z);
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
+    out.repaired_links = r.stats.repaired_links;
     ZLevelChunk& ch = out.chunk;
     std::vector<Vec2> pts;
     for (std::size_t c = 0; c < r.contours.size(); ++c) {
@@ -207,6 +208,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       st.tangent += o.kinds[2];
       st.candidates += o.candidates;
       st.open_chains += o.open_chains;
+      st.repaired_links += o.repaired_links;
       st.points += o.points;
     }
   };

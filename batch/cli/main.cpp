@@ -134,6 +134,7 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
                   o.name.c_str(), human(static_cast<double>(o.points)).c_str(), o.seconds,
                   human(o.compute_s > 0 ? o.points / o.compute_s : 0).c_str(),
                   o.peak_rss_bytes / 1048576.0);
+      if (!o.message.empty()) std::printf("  %-24s %s\n", "", o.message.c_str());
     } else {
       ++failed;
       std::printf("  %-24s %s: %s\n", o.name.c_str(), o.status.c_str(), o.message.c_str());

@@ -13,7 +13,7 @@ namespace ncpath::jobs {
 struct JobOutcome {
   std::string name;
   std::string status;   // "ok", "invalid_input", "invalid_parameter", "io_error", ...
-  std::string message;  // what went wrong, for a person; empty when ok
+  std::string message;  // what went wrong, for a person; when ok: a warning or empty
   std::uint64_t points = 0;
   double seconds = 0;    // wall time of the whole job
   double compute_s = 0;  // drop-cutting only

@@ -51,6 +51,7 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
   const out::StatValue list[] = {
       {"planes", i64(st.planes), ""},
       {"levels", i64(st.levels), ""},
+      {"zlevel_open_chains", i64(st.zlevel_open_chains), ""},
       {"candidates", i64(st.candidates), ""},
       {"pencil_points", i64(st.pencil_points), ""},
       {"kept_points", i64(st.kept_points), ""},

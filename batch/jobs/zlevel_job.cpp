@@ -103,6 +103,7 @@ void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& sta
       {"junctions_tangent", i64(st.tangent), ""},
       {"candidates", i64(st.candidates), ""},
       {"open_chains", i64(st.open_chains), ""},
+      {"repaired_links", i64(st.repaired_links), ""},
       {"cut_points", i64(st.points), ""},
       {"elements_s", st.elements_s, "s"},
   };

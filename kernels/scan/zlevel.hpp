@@ -125,6 +125,7 @@ struct ZLevelStats {
   std::uint64_t pieces = 0;            // pieces classified
   std::uint64_t kept = 0;              // pieces on the boundary
   std::uint64_t open_chains = 0;       // chains that could not be closed (0 in a valid result)
+  std::uint64_t repaired_links = 0;    // ends linked across a gap of up to tol::kZLevelRepair
   std::uint64_t convex_junctions = 0;  // convex corners (only at floors exactly at the level)
 };
 

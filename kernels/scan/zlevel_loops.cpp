@@ -270,6 +270,45 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
       }
     }
   }
+  // Repair: a piece whose end no piece leaves, with a piece that nothing enters starting
+  // within tol::kZLevelRepair. Nearly coincident tangents make these: stacked wall edges whose
+  // directions differ by ~1e-5 rad (a CAD wall in float coordinates) touch one vertex circle
+  // ~R 1e-5 apart; the short arc between their tangent points is not placed consistently
+  // with the lines next to it. Nearest start first, in piece order.
+  {
+    std::vector<std::uint8_t> has_prev(n, 0);
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (!dead[k] && next[k] != kNone) has_prev[next[k]] = 1;
+    std::vector<std::uint32_t> orphan;
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (!dead[k] && !has_prev[k]) orphan.push_back(k);
+    std::sort(orphan.begin(), orphan.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return kept[a].a.x() != kept[b].a.x() ? kept[a].a.x() < kept[b].a.x() : a < b;
+    });
+    std::vector<std::uint8_t> taken(orphan.size(), 0);
+    const double r = tol::kZLevelRepair;
+    for (std::uint32_t k = 0; k < n && !orphan.empty(); ++k) {
+      if (dead[k] || next[k] != kNone) continue;
+      const Vec2 e = kept[k].b;
+      auto it = std::lower_bound(orphan.begin(), orphan.end(), e.x() - r,
+                                 [&](std::uint32_t o, double x) { return kept[o].a.x() < x; });
+      std::size_t best = orphan.size();
+      double best_d = r;
+      for (auto i = std::size_t(it - orphan.begin());
+           i < orphan.size() && kept[orphan[i]].a.x() <= e.x() + r; ++i) {
+        const double d = (kept[orphan[i]].a - e).norm();
+        if (!taken[i] && (d < best_d || (d == best_d && best < orphan.size() &&
+                                         orphan[i] < orphan[best]))) {
+          best_d = d;
+          best = i;
+        }
+      }
+      if (best == orphan.size()) continue;
+      taken[best] = 1;
+      next[k] = orphan[best];
+      ++out.stats.repaired_links;
+    }
+  }
   // Trace.
   std::vector<std::uint8_t> visited(n, 0);
   std::vector<std::uint32_t> seq;
