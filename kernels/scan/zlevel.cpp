@@ -109,6 +109,28 @@ void fill_lists(const Grid& grid, std::size_t n, BoxOf box_of, CellLists& out) {
   }
 }
 
+// Each open cell's regions, deepest at the cell's centre first (ties by index): the region
+// that holds a curve piece in the cell is then found early in uncovered_runs and
+// classify_pieces, whose scans stop at the first. Only the order of the scans changes.
+void sort_by_depth(const Grid& grid, const std::vector<Region>& regions, const Level& lv,
+                   CellLists& lists) {
+  std::vector<std::pair<double, std::uint32_t>> key;
+  for (int j = 0; j < grid.ny; ++j)
+    for (int i = 0; i < grid.nx; ++i) {
+      const std::size_t cell = std::size_t(j) * grid.nx + i;
+      const std::uint32_t b0 = lists.start[cell], b1 = lists.start[cell + 1];
+      if (b1 - b0 < 2) continue;
+      const Vec2 centre(grid.gx(i) + 0.5 * grid.cell, grid.gy(j) + 0.5 * grid.cell);
+      key.clear();
+      for (std::uint32_t q = b0; q < b1; ++q) {
+        const double phi = region_phi(regions[lists.ids[q]], centre, lv);
+        key.emplace_back(std::isnan(phi) ? INFINITY : phi, lists.ids[q]);
+      }
+      std::sort(key.begin(), key.end());
+      for (std::uint32_t q = b0; q < b1; ++q) lists.ids[q] = key[q - b0].second;
+    }
+}
+
 bool boxes_overlap(const double* a, const double* b) {
   const double s = 1e-9;
   return a[0] <= b[2] + s && b[0] <= a[2] + s && a[1] <= b[3] + s && b[1] <= a[3] + s;
@@ -285,6 +307,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   CellLists region_cells, curve_cells;
   fill_lists(
       grid, regions.size(), [&](std::size_t k) { return regions[k].box; }, region_cells);
+  sort_by_depth(grid, regions, lv, region_cells);
   std::vector<Box4f> rbox(regions.size());
   for (std::size_t k = 0; k < regions.size(); ++k) rbox[k] = outward_box(regions[k].box);
 

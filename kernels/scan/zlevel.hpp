@@ -33,9 +33,10 @@
 // Method. Elements are pruned with a uniform grid: cells lying (with margin) inside one
 // region (mostly the discs of the mesh points) are interior to U and no boundary passes
 // through them; regions and curves that reach no other cell are never built. Each remaining
-// curve is cut into sub-pieces of about a cell; those lying in interior cells or strictly
-// inside one other region are dropped, and the curve is trimmed to the rest (crossings there
-// cannot be on the boundary); where curves coincide (the shadows of a wall's stacked edges
+// curve is cut into sub-pieces of about a cell, a sub-piece that is not certified halved
+// twice; those lying in interior cells or strictly inside one other region (searched deepest
+// at the cell's centre first) are dropped, and the curve is trimmed to the rest (crossings
+// there cannot be on the boundary); where curves coincide (the shadows of a wall's stacked edges
 // and vertices; lines by the distance of their ends, their directions differ by rounding),
 // only the lowest element id's is kept. The trimmed curves are split at their exact
 // crossings (closed form when a line is involved or for two circles; certified

@@ -75,15 +75,12 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
   if (arc) step = std::min(step, std::numbers::pi / 4);
   const int n = std::max(1, int(std::ceil(c.len / step)));
   std::uint32_t last = kNone;
-  Vec2 h[3];
-  Vec2 prev = c.a;
-  for (int k = 0; k < n; ++k) {
-    const double s0 = c.len * k / n, s1 = k + 1 == n ? c.len : c.len * (k + 1) / n;
+  // Certified: in interior cells, or its hull (ends and, for arcs, the tangents' crossing)
+  // strictly inside one region other than c's own.
+  auto certified = [&](double s0, double s1, const Vec2& p0, const Vec2& p1) {
+    Vec2 h[3] = {p0, p1, p0};
     int nh = 2;
-    h[0] = prev;
-    h[1] = k + 1 == n ? c.b : curve_point(c, s1);
-    prev = h[1];
-    if (arc) h[nh++] = h[0] + std::tan(0.5 * (s1 - s0)) * curve_tangent(c, s0);
+    if (arc) h[nh++] = p0 + std::tan(0.5 * (s1 - s0)) * curve_tangent(c, s0);
     double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (int q = 0; q < nh; ++q) {
       b[0] = std::min(b[0], h[q].x());
@@ -91,7 +88,7 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
       b[2] = std::max(b[2], h[q].x());
       b[3] = std::max(b[3], h[q].y());
     }
-    bool found = !grid.any_open(b);
+    if (!grid.any_open(b)) return true;
     auto inside = [&](std::uint32_t gi) {
       const Box4f& gb = rbox[gi];
       if (gi == c.region || b[0] < gb[0] || b[1] < gb[1] || b[2] > gb[2] || b[3] > gb[3])
@@ -101,20 +98,42 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
         if (!(region_phi(g, h[q], lv) < -m)) return false;
       return true;
     };
-    if (!found && last != kNone && inside(last)) found = true;
-    if (!found) {
-      const int cell = grid.at(0.5 * (h[0] + h[1]));
-      for (std::uint32_t q = cells.start[cell]; !found && q < cells.start[cell + 1]; ++q)
-        if (inside(cells.ids[q])) {
-          last = cells.ids[q];
-          found = true;
-        }
-    }
-    if (found) continue;
+    if (last != kNone && inside(last)) return true;
+    const int cell = grid.at(0.5 * (p0 + p1));
+    for (std::uint32_t q = cells.start[cell]; q < cells.start[cell + 1]; ++q)
+      if (inside(cells.ids[q])) {
+        last = cells.ids[q];
+        return true;
+      }
+    return false;
+  };
+  auto add_run = [&](double s0, double s1) {
     if (!runs.empty() && runs.back().second == s0)
       runs.back().second = s1;
     else
       runs.emplace_back(s0, s1);
+  };
+  // A step that is not certified is halved, and its halves once more: the curves of a
+  // finely sampled wall (its vertices' circles and edges' shadow lines a fraction of R apart,
+  // nearly coincident on a CAD wall stored in floats) are each covered by a neighbour except
+  // near their tangent joints, but over a whole step only by several regions together; left
+  // whole, every pair of them would be intersected and its pieces classified.
+  constexpr int kHalvings = 2;
+  auto visit = [&](auto&& self, double s0, double s1, const Vec2& p0, const Vec2& p1,
+                   int depth) -> void {
+    if (certified(s0, s1, p0, p1)) return;
+    if (depth == kHalvings) return add_run(s0, s1);
+    const double sm = 0.5 * (s0 + s1);
+    const Vec2 pm = curve_point(c, sm);
+    self(self, s0, sm, p0, pm, depth + 1);
+    self(self, sm, s1, pm, p1, depth + 1);
+  };
+  Vec2 prev = c.a;
+  for (int k = 0; k < n; ++k) {
+    const double s0 = c.len * k / n, s1 = k + 1 == n ? c.len : c.len * (k + 1) / n;
+    const Vec2 p1 = k + 1 == n ? c.b : curve_point(c, s1);
+    visit(visit, s0, s1, prev, p1, 0);
+    prev = p1;
   }
 }
 
