@@ -24,14 +24,6 @@ inline constexpr double kSurfaceSlack = 1e-9;
 // tells them apart; gouges narrower than that are not seen.
 double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
 
-// Raises points so that the polyline lies on or above the CL surface at its points and at
-// samples along every chord no farther apart than `spacing` (at least its middle): a chord
-// whose samples dip is lifted at both ends by the largest dip; the chords next to a raised
-// point are checked again (a lift can expose a neighbour), up to three passes. Returns the
-// number of points raised.
-std::size_t lift_above_surface(const DropIndex& index, double floor_z, double spacing,
-                               std::vector<Vec3>& points);
-
 // The exact check: the ball (radius R) swept along every chord of the tool-tip polyline, by
 // MeshDistance::march with radius R - kSweepSlack, so a chord is accepted only if its ball
 // nowhere comes closer than that to the mesh (not just at samples: a crease bending sideways
