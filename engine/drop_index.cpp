@@ -4,31 +4,12 @@
 
 #include <cmath>
 #include <limits>
-#include <stdexcept>
-#include <string>
 
-#include "kernels/geom/tolerance.hpp"
+#include "engine/embree_user_scene.hpp"
 
 namespace ncpath {
 
 namespace {
-
-void embree_error(void*, RTCError code, const char* message) {
-  // Registered so Embree never prints on its own; the constructor reads errors back with
-  // rtcGetDeviceError after the scene build and throws.
-  (void)code;
-  (void)message;
-}
-
-// Float bounds that contain the double interval [lo, hi] with room for rounding.
-float pad_down(double v) {
-  const double pad = tol::kFloatBoxPad * (1.0 + std::abs(v));
-  return std::nextafter(static_cast<float>(v - pad), -std::numeric_limits<float>::infinity());
-}
-float pad_up(double v) {
-  const double pad = tol::kFloatBoxPad * (1.0 + std::abs(v));
-  return std::nextafter(static_cast<float>(v + pad), std::numeric_limits<float>::infinity());
-}
 
 // The per-query state Embree hands back to the intersection callback.
 struct QueryContext {
@@ -45,8 +26,7 @@ struct DropIndex::Impl {
   const FacetTable* table;
   Cutter cutter;
   double z_top;
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  EmbreeUserScene embree;
 
   static void bounds(const RTCBoundsFunctionArguments* args) {
     const auto* self = static_cast<const Impl*>(args->geometryUserPtr);
@@ -85,32 +65,11 @@ DropIndex::DropIndex(const FacetTable& table, const Cutter& cutter)
   m.table = &table;
   m.cutter = cutter;
   m.z_top = table.box.empty() ? 1.0 : table.box.hi.z() + 1.0;
-  m.device = rtcNewDevice("threads=0");
-  if (!m.device) throw std::runtime_error("Embree: cannot create a device");
-  rtcSetDeviceErrorFunction(m.device, embree_error, nullptr);
-  m.scene = rtcNewScene(m.device);
-  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry geom = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(table.facets.size()));
-  rtcSetGeometryUserData(geom, &m);
-  rtcSetGeometryBoundsFunction(geom, &Impl::bounds, &m);
-  rtcSetGeometryIntersectFunction(geom, &Impl::intersect);
-  rtcSetGeometryOccludedFunction(geom, &Impl::occluded);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(m.scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(m.scene);
-  const RTCError err = rtcGetDeviceError(m.device);
-  if (err != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree: scene build failed with error code " +
-                             std::to_string(static_cast<int>(err)));
+  m.embree = EmbreeUserScene(table.facets.size(), &m, &Impl::bounds, &Impl::intersect,
+                             &Impl::occluded, RTC_SCENE_FLAG_ROBUST);
 }
 
-DropIndex::~DropIndex() {
-  if (impl_->scene) rtcReleaseScene(impl_->scene);
-  if (impl_->device) rtcReleaseDevice(impl_->device);
-}
+DropIndex::~DropIndex() = default;
 
 CutterContact DropIndex::query(double x, double y) const {
   const Impl& m = *impl_;
@@ -133,7 +92,7 @@ CutterContact DropIndex::query(double x, double y) const {
   rh.ray.tfar = std::numeric_limits<float>::infinity();
   rh.ray.mask = 0xFFFFFFFFu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(m.scene, &q.rtc, &rh);
+  rtcIntersect1(m.embree.scene(), &q.rtc, &rh);
   return q.best;
 }
 

@@ -6,10 +6,9 @@
 
 #include <algorithm>
 #include <cassert>
-#include <stdexcept>
-#include <string>
 #include <vector>
 
+#include "engine/embree_user_scene.hpp"
 #include "engine/parallel.hpp"
 #include "kernels/geom/tolerance.hpp"
 #include "kernels/mesh/closest_point.hpp"
@@ -19,23 +18,6 @@ namespace ncpath {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-void embree_error(void*, RTCError code, const char* message) {
-  // Registered so Embree never prints on its own; the constructor reads errors back with
-  // rtcGetDeviceError after the scene build and throws.
-  (void)code;
-  (void)message;
-}
-
-// Float bounds that contain the double interval [lo, hi] with room for rounding.
-float pad_down(double v) {
-  const double pad = tol::kFloatBoxPad * (1.0 + std::abs(v));
-  return std::nextafter(static_cast<float>(v - pad), -std::numeric_limits<float>::infinity());
-}
-float pad_up(double v) {
-  const double pad = tol::kFloatBoxPad * (1.0 + std::abs(v));
-  return std::nextafter(static_cast<float>(v + pad), std::numeric_limits<float>::infinity());
-}
 
 // Float query radius that Embree may compare with its float box distances without culling
 // any facet whose exact distance is <= d: covers the rounding of the query point to float
@@ -92,8 +74,8 @@ struct MeshDistance::Impl {
   std::uint64_t skipped = 0;
   Aabb3 box;             // of the kept facets, mm
   double mean_edge = 0;  // mm, sets march()'s window
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  // Last, so it is released before the facets its callbacks read.
+  EmbreeUserScene embree;
 
   static void bounds(const RTCBoundsFunctionArguments* args) {
     const auto* self = static_cast<const Impl*>(args->geometryUserPtr);
@@ -195,31 +177,10 @@ MeshDistance::MeshDistance(const TriangleMesh& mesh) : impl_(std::make_unique<Im
   m.mean_edge = m.tris.empty() ? 0 : edge_sum / (3.0 * m.tris.size());
   sort_along_morton_curve(m.box, m.tris, m.source);
 
-  m.device = rtcNewDevice("threads=0");
-  if (!m.device) throw std::runtime_error("Embree: cannot create a device");
-  rtcSetDeviceErrorFunction(m.device, embree_error, nullptr);
-  m.scene = rtcNewScene(m.device);
-  rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry geom = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_USER);
-  rtcSetGeometryUserPrimitiveCount(geom, static_cast<unsigned>(m.tris.size()));
-  rtcSetGeometryUserData(geom, &m);
-  rtcSetGeometryBoundsFunction(geom, &Impl::bounds, &m);
-  rtcSetGeometryIntersectFunction(geom, &Impl::intersect);
-  rtcSetGeometryOccludedFunction(geom, &Impl::occluded);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(m.scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(m.scene);
-  const RTCError err = rtcGetDeviceError(m.device);
-  if (err != RTC_ERROR_NONE)
-    throw std::runtime_error("Embree: scene build failed with error code " +
-                             std::to_string(static_cast<int>(err)));
+  m.embree = EmbreeUserScene(m.tris.size(), &m, &Impl::bounds, &Impl::intersect, &Impl::occluded);
 }
 
-MeshDistance::~MeshDistance() {
-  if (impl_->scene) rtcReleaseScene(impl_->scene);
-  if (impl_->device) rtcReleaseDevice(impl_->device);
-}
+MeshDistance::~MeshDistance() = default;
 
 std::uint64_t MeshDistance::facet_count() const { return impl_->tris.size(); }
 std::uint64_t MeshDistance::skipped() const { return impl_->skipped; }
@@ -236,7 +197,7 @@ MeshDistance::Closest MeshDistance::closest(const Vec3& p, double max_distance) 
   pq.radius = query_radius(max_distance, q.p_mag);
   RTCPointQueryContext ctx;
   rtcInitPointQueryContext(&ctx);
-  rtcPointQuery(m.scene, &pq, &ctx, &Impl::closest_callback, &q);
+  rtcPointQuery(m.embree.scene(), &pq, &ctx, &Impl::closest_callback, &q);
   return q.best;
 }
 
@@ -283,7 +244,7 @@ std::optional<double> MeshDistance::march(const Vec3& origin, const Vec3& dir, d
     pq.radius = query_radius(radius + span, q.p_mag);
     RTCPointQueryContext ctx;
     rtcInitPointQueryContext(&ctx);
-    rtcPointQuery(m.scene, &pq, &ctx, &Impl::sweep_callback, &q);
+    rtcPointQuery(m.embree.scene(), &pq, &ctx, &Impl::sweep_callback, &q);
     if (q.hit) return s + q.t_best;
     if (s + span >= s_max) return std::nullopt;
     s += span;
