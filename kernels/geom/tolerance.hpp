@@ -268,11 +268,13 @@ inline constexpr double kZLevelOnBoundary = 1e-11;
 inline constexpr double kZLevelLink = 1e-5;
 
 // mm. After linking (kZLevelLink), a contour piece whose end no piece leaves is linked to the
-// nearest piece that no piece enters when that one starts within this: nearly coincident
-// tangent lines of one circle (stacked wall edges of a CAD part whose directions differ by
-// ~1e-5 rad in float coordinates) leave a short arc between their tangent points (~R 1e-5
-// long, within ~1e-10 mm of both lines) that no classification above rounding can place.
-// The contour then has a gap of this size at most; counted (ZLevelStats::repaired_links).
+// nearest piece that no piece enters when that one starts within this. A safety net, counted
+// (ZLevelStats::repaired_links; the contour then has a gap of this size at most): nearly
+// coincident tangent lines of one circle (stacked wall edges of a CAD part whose directions
+// differ by ~1e-5 rad in float coordinates) are split at their tangent points (joints moved
+// to the coincident circle kept, T-junctions between lines), but where many such lines
+// converge to within kZLevelOnBoundary over ~1e-5 mm next to a corner their crossings and
+// classification can still disagree at that scale.
 inline constexpr double kZLevelRepair = 1e-4;
 
 // mm. A cell of the z-level pruning grid is interior when it lies this deep inside one region.

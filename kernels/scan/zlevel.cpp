@@ -417,8 +417,12 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
                          cross2(D.dir, C.dir) != 0;
       const std::int8_t enter = !lines ? 0 : cross2(D.dir, C.dir) > 0 ? 1 : -1;
       for (const Hit& h : hits) {
-        splits.push_back({i, h.sc, h.p, lines ? j : kNone, enter});
-        splits.push_back({j, h.sd, h.p, lines ? i : kNone, std::int8_t(-enter)});
+        // A T-junction (one line ends on the other) has no orientation: the lines need not
+        // cross there.
+        const bool cross = lines && !h.touch;
+        const std::int8_t e = cross ? enter : 0;
+        splits.push_back({i, h.sc, h.p, cross ? j : kNone, e});
+        splits.push_back({j, h.sd, h.p, cross ? i : kNone, std::int8_t(-e)});
       }
       st.crossings += hits.size();
     });

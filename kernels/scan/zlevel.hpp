@@ -28,7 +28,9 @@
 // segment (and, in the degenerate case of an offset side at exactly zc, that side). Each
 // clip segment ends tangent to the ellipse of the edge it ends on (the offset plane is
 // tangent to the edge's cylinder along the offset edge), and each capsule side ends tangent
-// to its end vertex's circle: these tangent joints are inserted as split points explicitly.
+// to its end vertex's circle: these tangent joints are inserted as split points explicitly
+// (on the circle kept in the vertex's place when stacked vertices' circles coincide). A line
+// ending within 2 tol::kZLevelOnBoundary of another line splits that one too (a T-junction).
 //
 // Method. Elements are pruned with a uniform grid: cells lying (with margin) inside one
 // region (mostly the discs of the mesh points) are interior to U and no boundary passes

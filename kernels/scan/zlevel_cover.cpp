@@ -146,22 +146,53 @@ void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& r
                          [](const Region& g, std::uint32_t e) { return g.element < e; });
     return it != regions.end() && it->element == id ? std::uint32_t(it - regions.begin()) : kNone;
   };
+  // A joint whose target vertex has no active curve through it may lie on a part of its
+  // circle that the coincident trimming (zlevel.cpp) left to the circle of another vertex with
+  // the same centre and radius, of a lower id: the stacked vertices of a wall, each with its
+  // own edges. That circle is split there instead. Otherwise the joint is lost: a wall's
+  // stacked edges whose directions differ by an angle a (1e-5 rad on a CAD wall stored in
+  // floats) leave the corner's circle at tangent points R a apart, and the kept arc runs on
+  // unsplit past the tangent point of a capsule side whose shadow line is the boundary from
+  // there (the arc beyond lies inside that capsule by ~(R a)^2 / R), leaving a gap of ~R a
+  // in the contour. Vertex regions sorted by centre x find the coincident circles (the test
+  // of coincident_overlap: centres and radii within tol::kZLevelOnBoundary).
+  std::vector<std::uint32_t> vtx;
+  for (std::uint32_t gi = 0; gi < regions.size(); ++gi)
+    if (regions[gi].kind == RegionKind::kVertex) vtx.push_back(gi);
+  std::sort(vtx.begin(), vtx.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return regions[a].c.x() != regions[b].c.x() ? regions[a].c.x() < regions[b].c.x() : a < b;
+  });
+  const double on = tol::kZLevelOnBoundary;
 
+  std::uint32_t best = kNone;
+  double best_d = 0, best_s = 0;
+  auto nearest = [&](std::uint32_t gi, const Vec2& p) {
+    for (std::uint32_t c = act_begin[gi]; c < act_begin[gi + 1]; ++c) {
+      double s = curve_param(act[c], p);
+      if (s < 0 || s > act[c].len) continue;
+      const double d = (curve_point(act[c], s) - p).norm();
+      if (d < best_d) {
+        best_d = d;
+        best = c;
+        best_s = s;
+      }
+    }
+  };
   for (const Joint& j : joints) {
     for (std::uint32_t target : {j.target, j.alt[0], j.alt[1]}) {
       if (target == kNone) continue;
       const std::uint32_t gi = region_of_element(target);
       if (gi == kNone) continue;
-      std::uint32_t best = kNone;
-      double best_d = 1e-6, best_s = 0;
-      for (std::uint32_t c = act_begin[gi]; c < act_begin[gi + 1]; ++c) {
-        double s = curve_param(act[c], j.p);
-        if (s < 0 || s > act[c].len) continue;
-        const double d = (curve_point(act[c], s) - j.p).norm();
-        if (d < best_d) {
-          best_d = d;
-          best = c;
-          best_s = s;
+      best = kNone;
+      best_d = 1e-6;
+      nearest(gi, j.p);
+      const Region& g = regions[gi];
+      if (best == kNone && g.kind == RegionKind::kVertex) {
+        auto it = std::lower_bound(vtx.begin(), vtx.end(), g.c.x() - on,
+                                   [&](std::uint32_t h, double x) { return regions[h].c.x() < x; });
+        for (; it != vtx.end() && regions[*it].c.x() <= g.c.x() + on; ++it) {
+          const Region& h = regions[*it];
+          if (*it != gi && (h.c - g.c).norm() <= on && std::abs(h.r - g.r) <= on) nearest(*it, j.p);
         }
       }
       if (best != kNone) {

@@ -125,7 +125,8 @@ Curve sub_curve(const Curve& c, double s0, double s1);
 
 struct Hit {
   Vec2 p;
-  double sc, sd;  // parameters on C and on D
+  double sc, sd;       // parameters on C and on D
+  bool touch = false;  // an end of one line on the other (a T-junction), not a crossing
 };
 // Crossings of C and D within both parameter ranges (inclusive, slightly widened).
 // `coincident` is set when the curves lie on the same line / circle / ellipse; then their
@@ -218,8 +219,10 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
                     const Level& lv, std::vector<std::pair<double, double>>& runs);
 
 // Appends the tangent joints as splits: each on the nearest active curve (within 1e-6 mm,
-// parameter in range) of the joint's target element, else of alt[0], alt[1]. act_begin[g]
-// is region g's first active curve (act is in region order).
+// parameter in range) of the joint's target element, else of alt[0], alt[1]; a vertex
+// without one there lends the joint to the circles coincident with its own (which the
+// coincident trimming kept in its place). act_begin[g] is region g's first active curve (act
+// is in region order).
 void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& regions,
                   const std::vector<Curve>& act, const std::vector<std::uint32_t>& act_begin,
                   std::vector<Split>& splits);

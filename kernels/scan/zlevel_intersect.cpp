@@ -93,9 +93,30 @@ void line_line(const Curve& C, const Curve& D, std::vector<Hit>& out, bool& coin
     return;
   }
   const double denom = cross2(C.dir, D.dir);
-  if (!(std::abs(denom) > 1e-15)) return;
-  const double t = cross2(D.dir, C.a - D.a) / denom;
-  add_hit(C, D, C.a + t * C.dir, t, out);
+  if (std::abs(denom) > 1e-15) {
+    const double t = cross2(D.dir, C.a - D.a) / denom;
+    add_hit(C, D, C.a + t * C.dir, t, out);
+  }
+  // T-junctions: an end of one line within 2 on of the other splits the other there too (a
+  // touch: it carries no crossing orientation). A piece found along a line (its midpoint and
+  // quarter points within `on` of it, classify_pieces) has its ends within 2 on of that line,
+  // the distance being linear along a line. Without the split, the other line's piece runs on
+  // past the end and is classified at a midpoint beyond it, away from this piece, and both
+  // are kept (or neither). Nearly coincident lines make these: the shadow of a sloping wall
+  // edge ending where it turns into its ellipse, beside the next edge's shadow, or a clip line
+  // leaving its joint on an edge at a grazing angle of 1e-8 to a shadow line (a CAD wall in
+  // float coordinates), whose crossing, uncertain by on / angle, lies just beyond the end.
+  const double tj = 2 * tol::kZLevelOnBoundary;
+  for (const Vec2* p : {&D.a, &D.b}) {
+    double sc = (*p - C.a).dot(C.dir);
+    if (std::abs(cross2(C.dir, *p - C.a)) <= tj && in_range(C, sc))
+      out.push_back({*p, sc, p == &D.a ? 0.0 : D.len, true});
+  }
+  for (const Vec2* p : {&C.a, &C.b}) {
+    double sd = (*p - D.a).dot(D.dir);
+    if (std::abs(cross2(D.dir, *p - D.a)) <= tj && in_range(D, sd))
+      out.push_back({*p, p == &C.a ? 0.0 : C.len, sd, true});
+  }
 }
 
 // C a line, D a conic: the conic's implicit along the line is a quadratic in t.
