@@ -24,15 +24,7 @@ constexpr double kDropTol = 1e-7;  // mm: contour vs brute-force point drop-cutt
 
 // ---- oracles (brute force from the mesh, no kernel code) ----
 
-inline std::vector<PreparedFacet> prepare_all(const TriangleMesh& mesh) {
-  std::vector<PreparedFacet> out;
-  for (const auto& f : mesh.facets) {
-    PreparedFacet pf;
-    if (prepare_facet(mesh.vertices[f[0]], mesh.vertices[f[1]], mesh.vertices[f[2]], pf))
-      out.push_back(pf);
-  }
-  return out;
-}
+using scan_test::prepare_all;
 
 struct Oracle {
   const TriangleMesh& mesh;
@@ -49,19 +41,12 @@ struct Oracle {
   }
 };
 
+// Brute-force distances to a segment and a triangle: the scan tests' oracles.
 inline double seg_dist(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 d = b - a;
-  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (p - (a + t * d)).norm();
+  return scan_test::point_segment_distance(p, a, b);
 }
-
 inline double tri_dist(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 n = (b - a).cross(c - a);
-  const Vec3 q = p - n * ((p - a).dot(n) / n.squaredNorm());
-  const double s0 = (b - a).cross(q - a).dot(n), s1 = (c - b).cross(q - b).dot(n);
-  const double s2 = (a - c).cross(q - c).dot(n);
-  if ((s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0)) return (p - q).norm();
-  return std::min({seg_dist(p, a, b), seg_dist(p, b, c), seg_dist(p, c, a)});
+  return scan_test::point_triangle_distance(p, a, b, c);
 }
 
 // Distance from p to element `id`, from the mesh.
