@@ -98,6 +98,9 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   par::sort(by_top.begin(), by_top.end(), [&](std::uint32_t a, std::uint32_t b) {
     return key[a] != key[b] ? key[a] > key[b] : a < b;
   });
+  const ZLevelElementBoxes boxes = zlevel_element_boxes(el);
+  ZLevelParams kernel;
+  kernel.boxes = &boxes;
   const Aabb3 box = bounding_box(mesh);
   st.top_z = box.hi.z();
   st.bottom_z = box.lo.z();
@@ -119,7 +122,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
                          [&](std::uint32_t id, double lv) { return key[id] >= lv; }) -
         by_top.begin());
     const ZLevelResult r =
-        zlevel_contours(el, std::span<const std::uint32_t>(by_top.data(), n), z);
+        zlevel_contours(el, std::span<const std::uint32_t>(by_top.data(), n), z, kernel);
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
     out.repaired_links = r.stats.repaired_links;

@@ -6,7 +6,8 @@
 // Levels: an explicit list, or a step-down from the part's top: top - step, top - 2 step, ...
 // while above the part's lowest point; cut from the top down. Candidates per level are the
 // prefix of the facets and edges sorted by their highest point (an element whose highest
-// point is below the level has no region there).
+// point is below the level has no region there); their boxes are gathered once for all
+// levels (zlevel_element_boxes).
 //
 // Polylines: lines exactly; an arc (circle or ellipse, centre c, axes r1 a and r2 a_perp) by
 // the polygon circumscribed to it in its affine frame: vertices at t0 + (j - 1/2) dt scaled by

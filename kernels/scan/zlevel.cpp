@@ -16,9 +16,9 @@ using namespace zlevel_detail;
 
 namespace {
 
-// Box of the element's region at any level at or below its top (conservative), false when
-// the region is empty at this level.
-bool candidate_box(const OffsetElements& el, std::uint32_t id, const Level& lv, double* b) {
+// Box of the element's region at any level (conservative, mm) and its reach (see
+// ZLevelElementBoxes); false for a vertical facet (no region at any level).
+bool element_box(const OffsetElements& el, std::uint32_t id, double* b, double& reach) {
   const auto nf = el.facet_count(), ne = el.edge_count();
   auto put = [&](const Vec3& p) {
     b[0] = std::min(b[0], p.x());
@@ -28,23 +28,24 @@ bool candidate_box(const OffsetElements& el, std::uint32_t id, const Level& lv, 
   };
   b[0] = b[1] = INFINITY;
   b[2] = b[3] = -INFINITY;
+  reach = -INFINITY;
   if (id < nf) {
     if (el.facet_vertical[id]) return false;
     const auto& t = el.facet_tri[id];
-    if (std::max({t[0].z(), t[1].z(), t[2].z()}) < lv.zc) return false;
+    reach = std::max({t[0].z(), t[1].z(), t[2].z()});
     for (const Vec3& p : t) put(p);
     return true;
   }
-  double pad = lv.R;
+  const double pad = el.radius;
   if (id < nf + ne) {
     const auto& ev = el.edge_vertices[id - nf];
     const Vec3 &p = el.points[ev[0]], &q = el.points[ev[1]];
-    if (!(std::max(p.z(), q.z()) + lv.R > lv.zc)) return false;
+    reach = std::max(p.z(), q.z()) + el.radius;
     put(p);
     put(q);
   } else {
     const Vec3& p = el.points[el.vertex_source[id - nf - ne]];
-    if (!(p.z() + lv.R > lv.zc)) return false;
+    reach = p.z() + el.radius;
     put(p);
   }
   b[0] -= pad;
@@ -52,6 +53,11 @@ bool candidate_box(const OffsetElements& el, std::uint32_t id, const Level& lv, 
   b[2] += pad;
   b[3] += pad;
   return true;
+}
+
+// Whether the region of element `id` (facets: ids below nf) can be non-empty at the level.
+bool reaches(double reach, bool facet, const Level& lv) {
+  return facet ? reach >= lv.zc : reach > lv.zc;
 }
 
 void mark_interior(const Region& g, const Level& lv, Grid& grid) {
@@ -150,6 +156,19 @@ const char* contour_seg_kind_name(ContourSegKind kind) {
   return "?";
 }
 
+ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el) {
+  ZLevelElementBoxes out;
+  const std::size_t n = el.element_count();
+  out.box.resize(n);
+  out.reach.resize(n);
+  for (std::size_t id = 0; id < n; ++id) {
+    double b[4];
+    if (!element_box(el, std::uint32_t(id), b, out.reach[id])) out.reach[id] = -INFINITY;
+    out.box[id] = outward_box(b);
+  }
+  return out;
+}
+
 ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
                              double tip_z, const ZLevelParams& params) {
   ZLevelResult result;
@@ -179,16 +198,24 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   std::vector<std::uint64_t> pbits((el.points.size() + 63) / 64, 0);
   auto mark_point = [&](std::uint32_t p) { pbits[p >> 6] |= std::uint64_t(1) << (p & 63); };
   double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+  const ZLevelElementBoxes* pre = params.boxes;
   for_each_id([&](std::uint32_t id) {
     ++st.candidates;
-    double b[4];
-    if (!candidate_box(el, id, lv, b)) return;
+    Box4f fb;
+    if (pre) {
+      if (!reaches(pre->reach[id], id < nf, lv)) return;
+      fb = pre->box[id];
+    } else {
+      double b[4], reach;
+      if (!element_box(el, id, b, reach) || !reaches(reach, id < nf, lv)) return;
+      fb = outward_box(b);
+    }
     cand.push_back(id);
-    cand_box.push_back(outward_box(b));
-    ext[0] = std::min(ext[0], b[0]);
-    ext[1] = std::min(ext[1], b[1]);
-    ext[2] = std::max(ext[2], b[2]);
-    ext[3] = std::max(ext[3], b[3]);
+    cand_box.push_back(fb);
+    ext[0] = std::min(ext[0], double(fb[0]));
+    ext[1] = std::min(ext[1], double(fb[1]));
+    ext[2] = std::max(ext[2], double(fb[2]));
+    ext[3] = std::max(ext[3], double(fb[3]));
     if (id >= nf + ne) {
       mark_point(el.vertex_source[id - nf - ne]);
     } else if (id >= nf) {

@@ -60,6 +60,7 @@
 // (the wall, when the mesh has one), the bi-contact vector is horizontal.
 //
 // Output is deterministic: it does not depend on the order or repetition of candidates.
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -138,11 +139,24 @@ struct ZLevelResult {
   ZLevelStats stats;
 };
 
+// What the candidate filter reads of each element at every level, gathered once for many
+// levels (zlevel_element_boxes): its region's box at any level (x0, y0, x1, y1, mm, rounded
+// outwards to float) and `reach`, the ball-centre height up to which the region can be
+// non-empty (facets: up to and including it; edges and vertices: strictly below it; -inf for
+// vertical facets). 24 bytes an element, read in order instead of its geometry.
+struct ZLevelElementBoxes {
+  std::vector<std::array<float, 4>> box;
+  std::vector<double> reach;
+};
+ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
+
 struct ZLevelParams {
   double cell = 0;  // pruning grid cell, mm; 0: R / 2 (raised if the grid would be huge)
   bool skip_unreachable = true;  // use OffsetElements' edge/vertex reachability flags
   double on_boundary = tol::kZLevelOnBoundary;
   double link = tol::kZLevelLink;
+  // Optional: zlevel_element_boxes(el) of the same elements (the result is the same).
+  const ZLevelElementBoxes* boxes = nullptr;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any

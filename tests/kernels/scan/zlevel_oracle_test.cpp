@@ -3,7 +3,7 @@
 // of every segment, point-in-contours equal to "drop >= level", bi-contact vectors at distance
 // R from their elements (zlevel_test_support.hpp); the same on a real CAD part
 // (datasets/cache/meshes/anchor_dense.off); the result does not depend on the candidates'
-// order or repetition, nor on the pruning grid.
+// order or repetition, nor on the pruning grid, nor on element boxes gathered beforehand.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -134,6 +134,12 @@ TEST(ZLevel, CandidateOrderAndFilterDoNotMatter) {
       if (top >= z + el.radius) reach.push_back(id);
     }
     EXPECT_TRUE(same_result(ref, zlevel_contours(el, reach, z)));
+    // The element boxes gathered once (what the engine passes for all its levels).
+    const ZLevelElementBoxes boxes = zlevel_element_boxes(el);
+    ZLevelParams pb;
+    pb.boxes = &boxes;
+    EXPECT_TRUE(same_result(ref, zlevel_contours(el, reach, z, pb)));
+    EXPECT_TRUE(same_result(ref, zlevel_contours(el, ids, z, pb)));
     // A different pruning grid gives the same loops (areas).
     ZLevelParams p;
     p.cell = 0.37;
