@@ -115,25 +115,30 @@ void fill_lists(const Grid& grid, std::size_t n, BoxOf box_of, CellLists& out) {
   }
 }
 
-// Each open cell's regions, deepest at the cell's centre first (ties by index): the region
-// that holds a curve piece in the cell is then found early in uncovered_runs and
-// classify_pieces, whose scans stop at the first. Only the order of the scans changes.
+// Each open cell's regions, deepest at the cell's centre first (ties by index), with that
+// depth (lists.depth): the region that holds a curve piece in the cell is then found early in
+// uncovered_runs and classify_pieces, whose scans stop at the first, and scans end where no
+// region can matter any more (depth_cutoff).
 void sort_by_depth(const Grid& grid, const std::vector<Region>& regions, const Level& lv,
                    CellLists& lists) {
+  lists.depth.assign(lists.ids.size(), INFINITY);
   std::vector<std::pair<double, std::uint32_t>> key;
   for (int j = 0; j < grid.ny; ++j)
     for (int i = 0; i < grid.nx; ++i) {
       const std::size_t cell = std::size_t(j) * grid.nx + i;
       const std::uint32_t b0 = lists.start[cell], b1 = lists.start[cell + 1];
-      if (b1 - b0 < 2) continue;
-      const Vec2 centre(grid.gx(i) + 0.5 * grid.cell, grid.gy(j) + 0.5 * grid.cell);
+      if (b1 == b0) continue;
+      const Vec2 centre = grid.centre(int(cell));
       key.clear();
       for (std::uint32_t q = b0; q < b1; ++q) {
         const double phi = region_phi(regions[lists.ids[q]], centre, lv);
         key.emplace_back(std::isnan(phi) ? INFINITY : phi, lists.ids[q]);
       }
       std::sort(key.begin(), key.end());
-      for (std::uint32_t q = b0; q < b1; ++q) lists.ids[q] = key[q - b0].second;
+      for (std::uint32_t q = b0; q < b1; ++q) {
+        lists.ids[q] = key[q - b0].second;
+        lists.depth[q] = key[q - b0].first;
+      }
     }
 }
 

@@ -100,11 +100,17 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
     };
     if (last != kNone && inside(last)) return true;
     const int cell = grid.at(0.5 * (p0 + p1));
-    for (std::uint32_t q = cells.start[cell]; q < cells.start[cell + 1]; ++q)
+    const Vec2 centre = grid.centre(cell);
+    double d = 0;
+    for (int q = 0; q < nh; ++q) d = std::max(d, (h[q] - centre).norm());
+    const double cutoff = depth_cutoff(d, lv.R, -m);
+    for (std::uint32_t q = cells.start[cell]; q < cells.start[cell + 1]; ++q) {
+      if (cells.depth[q] >= cutoff) break;
       if (inside(cells.ids[q])) {
         last = cells.ids[q];
         return true;
       }
+    }
     return false;
   };
   auto add_run = [&](double s0, double s1) {
@@ -261,8 +267,11 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
     const int cell = grid.at(m);
     if (grid.interior[cell]) continue;
     bool keep = true;
+    // Regions whose value at m exceeds `on` do not decide anything (depth_cutoff).
+    const double cutoff = depth_cutoff((m - grid.centre(cell)).norm(), lv.R, on);
     for (std::uint32_t q = region_cells.start[cell]; keep && q < region_cells.start[cell + 1];
          ++q) {
+      if (region_cells.depth[q] >= cutoff) break;
       const std::uint32_t gj = region_cells.ids[q];
       const Box4f& gb = rbox[gj];
       if (gj == C.region || m.x() < gb[0] || m.x() > gb[2] || m.y() < gb[1] || m.y() > gb[3])

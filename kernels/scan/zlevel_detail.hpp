@@ -154,6 +154,7 @@ struct Grid {
   double gx(int i) const { return x0 + i * cell; }
   double gy(int j) const { return y0 + j * cell; }
   int at(const Vec2& p) const { return iy(p.y()) * nx + ix(p.x()); }
+  Vec2 centre(int c) const { return Vec2(gx(c % nx) + 0.5 * cell, gy(c / nx) + 0.5 * cell); }
   void range(const double* b, int& i0, int& j0, int& i1, int& j1) const {
     i0 = ix(b[0]);
     j0 = iy(b[1]);
@@ -174,7 +175,18 @@ struct Grid {
 // Compressed lists of ids per open cell (count, scan, fill).
 struct CellLists {
   std::vector<std::uint32_t> start, ids;
+  // Region lists only (sort_by_depth in zlevel.cpp): each region's membership value at the
+  // cell's centre, ascending within a cell.
+  std::vector<double> depth;
 };
+
+// A region whose membership value at a point c is at least this holds no point within
+// distance d of c where its value is below `above` (>= -R): the value is the signed distance
+// for facets and discs (1-Lipschitz), and (s^2 - R^2) / (2 R) for capsules with s a
+// distance, so it grows from c by at most d + d^2 / (2 R) (plus rounding).
+inline double depth_cutoff(double d, double R, double above) {
+  return above + d * (1 + 1e-9) + d * d / (2 * R) + 1e-9;
+}
 
 using Box4f = std::array<float, 4>;
 
