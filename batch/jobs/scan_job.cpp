@@ -1,9 +1,9 @@
 #include "batch/jobs/scan_job.hpp"
 
-#include <cassert>
 #include <span>
 
 #include "batch/jobs/junction_table.hpp"
+#include "batch/jobs/record_sink.hpp"
 #include "engine/scan.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "kernels/scan/plane_slice.hpp"
@@ -115,23 +115,9 @@ ScanJobSummary run_scan_job(const JobSpec& job, const TriangleMesh& mesh, out::C
                             std::vector<out::StatValue>& stats) {
   ScanJobSummary summary;
   ScanRecords records;
-  [[maybe_unused]] std::int64_t cut_paths = 0;  // cut paths before the chunk
-  auto sink = [&](const ScanChunk& ch) {
-    const ClChunk& c = ch.cl;
-    cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
-    if (gcode) gcode->append(c);
-    summary.points += c.point_count();
-#ifndef NDEBUG
-    // The engine numbers the segments' and junctions' paths among the cut paths.
-    std::int64_t cuts = 0;
-    for (std::uint8_t k : c.path_kinds) cuts += k == static_cast<std::uint8_t>(PathKind::kCut);
-    for (const ScanSegmentRecord& s : ch.segments)
-      assert(s.path >= cut_paths && s.path < cut_paths + cuts);
-    cut_paths += cuts;
-#endif
-    records.append(ch);
-  };
-  const ScanStats st = run_scan(mesh, job.tool, job.scan, sink, control);
+  RecordSink<ScanRecords> sink{cl, gcode, records, summary.points};
+  const ScanStats st = run_scan(
+      mesh, job.tool, job.scan, [&](const ScanChunk& ch) { sink(ch); }, control);
   summary.compute_s = st.compute_s;
 
   Stopwatch write_clock;

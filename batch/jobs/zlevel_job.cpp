@@ -5,6 +5,7 @@
 #include <string>
 
 #include "batch/jobs/junction_table.hpp"
+#include "batch/jobs/record_sink.hpp"
 #include "engine/zlevel.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "kernels/scan/zlevel.hpp"
@@ -117,24 +118,13 @@ ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, ou
                                 std::vector<out::StatValue>& stats) {
   ZLevelJobSummary summary;
   ZLevelRecords records;
-  [[maybe_unused]] std::int64_t cut_paths = 0;  // cut paths before the chunk
-  auto sink = [&](const ZLevelChunk& ch) {
-    const ClChunk& c = ch.cl;
-    cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
-    if (gcode) gcode->append(c);
-    summary.points += c.point_count();
-#ifndef NDEBUG
-    // The engine numbers the records' paths among the cut paths, one contour per cut path.
-    std::int64_t cuts = 0;
-    for (std::uint8_t k : c.path_kinds) cuts += k == static_cast<std::uint8_t>(PathKind::kCut);
-    assert(static_cast<std::size_t>(cuts) == ch.contour_level.size());
-    for (const ZLevelSegmentRecord& s : ch.segments)
-      assert(s.path >= cut_paths && s.path < cut_paths + cuts);
-    cut_paths += cuts;
-#endif
-    records.append(ch);
+  RecordSink<ZLevelRecords> sink{cl, gcode, records, summary.points};
+  auto on_chunk = [&](const ZLevelChunk& ch) {
+    // One contour per cut path.
+    assert(static_cast<std::size_t>(cut_path_count(ch.cl)) == ch.contour_level.size());
+    sink(ch);
   };
-  const ZLevelOpStats st = run_zlevel(mesh, job.tool, job.zlevel, sink, control);
+  const ZLevelOpStats st = run_zlevel(mesh, job.tool, job.zlevel, on_chunk, control);
   summary.compute_s = st.compute_s;
 
   Stopwatch write_clock;

@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <numbers>
 
+#include "tests/batch/cli_job_checks.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/mesh_op_cli_support.hpp"
 
@@ -24,7 +25,7 @@ namespace {
 namespace h5 = out::test;
 using test::CmdResult;
 using test::ncpath;
-using test::slurp;
+using namespace cli_checks;
 using namespace mesh_op_cli;
 
 constexpr double kRho = 3;        // fillet radius
@@ -87,13 +88,10 @@ TEST(FilletCli, PassesTouchTheFilletedGrooveFromContactToContact) {
                              (dir / "f.h5").string() + " --gcode " + (dir / "f.ngc").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "f.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/fillet", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "operation"), "fillet");
-  ASSERT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
-  const std::string params = h5::attr_str(job, "params");
-  for (const char* s : {"\"reference\":\"ball:10\"", "\"reference_diameter\":10.0",
-                        "\"stepover\":0.0", "\"scallop\":0.005", "\"step_down\":0.0"})
-    EXPECT_NE(params.find(s), std::string::npos) << s << " in " << params;
+  ASSERT_NO_FATAL_FAILURE(
+      expect_job_ok(f, "fillet", "fillet",
+                    {"\"reference\":\"ball:10\"", "\"reference_diameter\":10.0", "\"stepover\":0.0",
+                     "\"scallop\":0.005", "\"step_down\":0.0"}));
 
   // One reference pencil path: its passes, cut (0) and linked at depth (1), no rapid.
   const ClOut cl = read_cl(f, "fillet");
@@ -159,9 +157,7 @@ TEST(FilletCli, PassesTouchTheFilletedGrooveFromContactToContact) {
   EXPECT_GE(st["compute_s"], st["pencil_s"]);
 
   // G-code: rapids 5 mm above the groove's top (z = 10).
-  const std::string g = slurp(dir / "f.ngc");
-  EXPECT_NE(g.find("G0 Z15.0000"), std::string::npos);
-  EXPECT_NE(g.find("M2"), std::string::npos);
+  expect_gcode_has(dir / "f.ngc", {"G0 Z15.0000", "M2"});
 }
 
 TEST(FilletCli, StockAndDirection) {
@@ -174,11 +170,8 @@ TEST(FilletCli, StockAndDirection) {
                              (dir / "s.h5").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "s.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/fillet", H5P_DEFAULT));
-  ASSERT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
-  const std::string params = h5::attr_str(job, "params");
-  for (const char* p : {"\"stock\":0.3", "\"direction\":\"climb\""})
-    EXPECT_NE(params.find(p), std::string::npos) << p << " in " << params;
+  ASSERT_NO_FATAL_FAILURE(
+      expect_job_ok(f, "fillet", "", {"\"stock\":0.3", "\"direction\":\"climb\""}));
 
   // One pencil path: passes (0) joined by one-point rapids (2) to the next pass's start.
   const ClOut cl = read_cl(f, "fillet");
@@ -211,18 +204,6 @@ TEST(FilletCli, StockAndDirection) {
   EXPECT_EQ(st.unit("neutral_passes"), "");
 }
 
-// The raw bytes of a dataset, read in its own (native) type.
-std::vector<unsigned char> raw(hid_t f, const std::string& path) {
-  h5::Id ds(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "open " + path);
-  h5::Id file_type(H5Dget_type(ds));
-  h5::Id type(H5Tget_native_type(file_type, H5T_DIR_ASCEND));
-  h5::Id space(H5Dget_space(ds));
-  std::vector<unsigned char> out(H5Sget_simple_extent_npoints(space) * H5Tget_size(type));
-  if (!out.empty() && H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw std::runtime_error("read " + path);
-  return out;
-}
-
 TEST(FilletCli, OneAndTwoThreadsWriteIdenticalDatasets) {
   // The plate's pocket: several reference pencil paths (floor creases, corners), spread over
   // the threads.
@@ -237,21 +218,13 @@ input = "plate.off"
 tool = "ball:1"
 params = { reference = "ball:2.5", interval = 0.5, step_down = 0.3, stepover = 0.25, max_passes = 8 }
 )";
-  for (const char* t : {"1", "2"}) {
-    const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet --threads " + t +
-                               " --out " + (dir / (std::string("t") + t + ".h5")).string());
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-  }
+  ASSERT_NO_FATAL_FAILURE(run_with_one_and_two_threads(dir));
   h5::Id a = h5::open_read(dir / "t1.h5");
   h5::Id b = h5::open_read(dir / "t2.h5");
   EXPECT_EQ((scan_cli::Stats{a, "cleanup"}["threads"]), 1);
   EXPECT_EQ((scan_cli::Stats{b, "cleanup"}["threads"]), 2);
-  for (const char* d : {"cl/points", "cl/path_offsets", "cl/path_kind", "cl/contact_kind"}) {
-    const std::string path = std::string("/jobs/cleanup/") + d;
-    const auto x = raw(a, path);
-    EXPECT_GT(x.size(), 0u) << path;
-    EXPECT_TRUE(x == raw(b, path)) << path;
-  }
+  for (const char* d : {"cl/points", "cl/path_offsets", "cl/path_kind", "cl/contact_kind"})
+    expect_same_dataset(a, b, std::string("/jobs/cleanup/") + d);
   const scan_cli::Stats st{a, "cleanup"};
   EXPECT_GE(st["reference_paths"], 2);  // work for both threads
   EXPECT_GE(st["passes"], st["reference_paths"]);
@@ -263,63 +236,45 @@ params = { reference = "ball:2.5", interval = 0.5, step_down = 0.3, stepover = 0
     EXPECT_EQ(st[s], (scan_cli::Stats{b, "cleanup"}[s])) << s;
 }
 
-// Exit code 1, `status` in the output and in the file, and `expected` in the message.
-void expect_failure(const std::filesystem::path& dir, const std::string& args,
-                    const std::string& expected) {
-  const std::string out = (dir / "bad.h5").string();
-  const CmdResult r = ncpath("fillet " + args + " --quiet --out " + out);
-  EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
-  EXPECT_NE(r.output.find("invalid_parameter"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(expected), std::string::npos) << expected << " in: " << r.output;
-  h5::Id f = h5::open_read(out);
-  h5::Id job(H5Gopen2(f, "/jobs/fillet", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter");
-  EXPECT_NE(h5::attr_str(job, "message").find(expected), std::string::npos)
-      << h5::attr_str(job, "message");
-}
-
 TEST(FilletCli, ProblemsAreNamed) {
   const auto dir = scan_cli::fixture_dir("fillet_problems");
   scan_cli::write_off(dir / "groove.off", scan_cli::groove(false));
   const std::string mesh = "--mesh " + (dir / "groove.off").string();
-  expect_failure(dir, mesh + " --tool flat:3 --reference ball:10",
+  expect_failure(dir, "fillet", mesh + " --tool flat:3 --reference ball:10",
                  "fillet-cut needs a ball-end mill");
-  expect_failure(dir, mesh + " --tool bull:3:1 --reference ball:10",
+  expect_failure(dir, "fillet", mesh + " --tool bull:3:1 --reference ball:10",
                  "fillet-cut needs a ball-end mill");
-  expect_failure(dir, mesh + " --tool ball:3 --reference flat:10",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference flat:10",
                  "--reference must be a ball-end mill (ball:D");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:2",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:2",
                  "--reference must be a larger ball than the tool (3 mm), got 'ball:2' (2 mm)");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:3",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:3",
                  "--reference must be a larger ball than the tool (3 mm)");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball",
                  "--reference is not a usable ball: tool 'ball' is malformed");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --scallop 0",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:10 --scallop 0",
                  "--scallop must be a positive number of mm when stepover is 0, got 0");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --stepover 0.5 --scallop 0.01",
+  expect_failure(dir, "fillet",
+                 mesh + " --tool ball:3 --reference ball:10 --stepover 0.5 --scallop 0.01",
                  "--scallop is not used when --stepover is given (> 0)");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --stepover -1",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:10 --stepover -1",
                  "--stepover must be >= 0 mm");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --max-passes 0",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:10 --max-passes 0",
                  "--max-passes must be >= 1");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --interval 0",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:10 --interval 0",
                  "--interval must be a positive number of mm, got 0");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --min-angle 200",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:10 --min-angle 200",
                  "--min-angle must be between 0 and 180 degrees, got 200");
-  expect_failure(dir, mesh + " --tool ball:3 --reference ball:10 --stock -1.5",
+  expect_failure(dir, "fillet", mesh + " --tool ball:3 --reference ball:10 --stock -1.5",
                  "--stock must be greater than minus the ball radius (-1.5 mm)");
   // CLI11 refuses a direction that is not one of the three before anything runs, naming it.
-  const CmdResult d = ncpath("fillet " + mesh +
-                             " --tool ball:3 --reference ball:10 --direction zigzag --quiet "
-                             "--out " +
-                             (dir / "d.h5").string());
-  EXPECT_NE(d.exit_code, 0);
-  EXPECT_NE(d.output.find("--direction"), std::string::npos) << d.output;
+  expect_refused("fillet " + mesh +
+                     " --tool ball:3 --reference ball:10 --direction zigzag --quiet --out " +
+                     (dir / "d.h5").string(),
+                 "--direction");
   // Without --reference CLI11 refuses the command line before anything runs, naming it.
-  const CmdResult r =
-      ncpath("fillet " + mesh + " --tool ball:3 --quiet --out " + (dir / "x.h5").string());
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("--reference"), std::string::npos) << r.output;
+  expect_refused("fillet " + mesh + " --tool ball:3 --quiet --out " + (dir / "x.h5").string(),
+                 "--reference");
 
   // The same in a batch file: each bad job is recorded and the good one still runs.
   std::ofstream(dir / "jobs.toml") << R"(
@@ -343,22 +298,12 @@ input = "groove.off"
 tool = "ball:3"
 params = { reference = "ball:10", interval = 1, step_down = 0, stepover = 0.5 }
 )";
-  const CmdResult b = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
-  EXPECT_EQ(b.exit_code, 1) << b.output;
-  EXPECT_NE(b.output.find("3 job(s), 1 ok, 2 failed"), std::string::npos) << b.output;
+  expect_bad_jobs_named(
+      dir, "3 job(s), 1 ok, 2 failed",
+      {{"flat", "fillet-cut needs a ball-end mill"},
+       {"small-reference", "'params.reference' must be a larger ball than the tool (3 mm)"}},
+      {"good"});
   h5::Id f = h5::open_read(dir / "batch.h5");
-  const std::pair<const char*, const char*> want[] = {
-      {"flat", "fillet-cut needs a ball-end mill"},
-      {"small-reference", "'params.reference' must be a larger ball than the tool (3 mm)"},
-  };
-  for (const auto& [name, message] : want) {
-    h5::Id job(H5Gopen2(f, (std::string("/jobs/") + name).c_str(), H5P_DEFAULT));
-    EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter") << name;
-    EXPECT_NE(h5::attr_str(job, "message").find(message), std::string::npos)
-        << name << ": " << h5::attr_str(job, "message");
-  }
-  h5::Id good(H5Gopen2(f, "/jobs/good", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(good, "status"), "ok") << h5::attr_str(good, "message");
   // The sharp groove (no fillet): the reference's contacts are x = +-R / sqrt 2 on the flanks
   // and the small ball's +-r / sqrt 2 at the floor, so passes 0.5 mm apart span them.
   EXPECT_GE((scan_cli::Stats{f, "good"}["passes"]), 3);

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "batch/io/stl_writer.hpp"
+#include "tests/batch/cli_job_checks.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/mesh_op_cli_support.hpp"
 #include "tests/support/meshes.hpp"
@@ -17,19 +18,8 @@ namespace {
 namespace h5 = out::test;
 using test::CmdResult;
 using test::ncpath;
+using namespace cli_checks;
 using namespace mesh_op_cli;
-
-// The raw bytes of a dataset, read in its own (native) type.
-std::vector<unsigned char> raw(hid_t f, const std::string& path) {
-  h5::Id ds(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "open " + path);
-  h5::Id file_type(H5Dget_type(ds));
-  h5::Id type(H5Tget_native_type(file_type, H5T_DIR_ASCEND));
-  h5::Id space(H5Dget_space(ds));
-  std::vector<unsigned char> out(H5Sget_simple_extent_npoints(space) * H5Tget_size(type));
-  if (!out.empty() && H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw std::runtime_error("read " + path);
-  return out;
-}
 
 TEST(MeshOpCli, OneAndTwoThreadsWriteIdenticalDatasets) {
   const auto dir = scan_cli::fixture_dir("mesh_op_threads");
@@ -53,11 +43,7 @@ input = "plate.off"
 tool = "ball:2.5"
 params = { interval = 0.5, step_down = 0.3 }
 )";
-  for (const char* t : {"1", "2"}) {
-    const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet --threads " + t +
-                               " --out " + (dir / (std::string("t") + t + ".h5")).string());
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-  }
+  ASSERT_NO_FATAL_FAILURE(run_with_one_and_two_threads(dir));
   h5::Id a = h5::open_read(dir / "t1.h5");
   h5::Id b = h5::open_read(dir / "t2.h5");
   EXPECT_EQ((scan_cli::Stats{a, "contours"}["threads"]), 1);
@@ -71,11 +57,7 @@ params = { interval = 0.5, step_down = 0.3 }
                           "contour_level",     "contour_hole"};
   const char* pencil[] = {"point_position", "point_b1",     "point_b2",
                           "point_angle",    "point_family", "point_kept"};
-  auto same = [&](const std::string& path) {
-    const auto x = raw(a, path);
-    EXPECT_GT(x.size(), 0u) << path;
-    EXPECT_TRUE(x == raw(b, path)) << path;
-  };
+  auto same = [&](const std::string& path) { expect_same_dataset(a, b, path); };
   for (const char* d : cl) same(std::string("/jobs/contours/") + d);
   for (const char* d : zlevel) same(std::string("/jobs/contours/zlevel/") + d);
   for (const char* d : cl) same(std::string("/jobs/creases/") + d);
@@ -86,20 +68,6 @@ params = { interval = 0.5, step_down = 0.3 }
   EXPECT_EQ(st["open_chains"], 0);
   // The pocket's creases: the floor's square and the corners, each a cut path.
   EXPECT_GE((scan_cli::Stats{a, "creases"}["paths"]), 1);
-}
-
-// Exit code 1, `status` in the output and in the file, and `expected` in the message.
-void expect_failure(const std::filesystem::path& dir, const std::string& command,
-                    const std::string& args, const std::string& expected) {
-  const std::string out = (dir / "bad.h5").string();
-  const CmdResult r = ncpath(command + " " + args + " --quiet --out " + out);
-  EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
-  EXPECT_NE(r.output.find("invalid_parameter"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(expected), std::string::npos) << expected << " in: " << r.output;
-  h5::Id f = h5::open_read(out);
-  h5::Id job(H5Gopen2(f, ("/jobs/" + command).c_str(), H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter");
-  EXPECT_NE(h5::attr_str(job, "message").find(expected), std::string::npos);
 }
 
 TEST(MeshOpCli, ProblemsAreNamed) {
@@ -128,15 +96,12 @@ TEST(MeshOpCli, ProblemsAreNamed) {
   expect_failure(dir, "pencil", mesh + " --tool ball:4 --stock -2",
                  "--stock must be greater than minus the ball radius (-2 mm)");
   // CLI11 refuses a direction that is not one of the three before anything runs, naming it.
-  const CmdResult d = ncpath("pencil " + mesh + " --tool ball:4 --direction down --quiet --out " +
-                             (dir / "d.h5").string());
-  EXPECT_NE(d.exit_code, 0);
-  EXPECT_NE(d.output.find("--direction"), std::string::npos) << d.output;
+  expect_refused(
+      "pencil " + mesh + " --tool ball:4 --direction down --quiet --out " + (dir / "d.h5").string(),
+      "--direction");
   // CLI11 refuses a level that is not a number before anything runs, naming the option.
-  const CmdResult r =
-      ncpath("zlevel " + mesh + " --levels 1,x --quiet --out " + (dir / "x.h5").string());
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("--levels"), std::string::npos) << r.output;
+  expect_refused("zlevel " + mesh + " --levels 1,x --quiet --out " + (dir / "x.h5").string(),
+                 "--levels");
 
   // The same in a batch file: each bad job is recorded and the good ones still run.
   std::ofstream(dir / "jobs.toml") << R"(
@@ -183,28 +148,16 @@ input = "groove.off"
 tool = "ball:4"
 params = { interval = 2, step_down = 0 }
 )";
-  const CmdResult b = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
-  EXPECT_EQ(b.exit_code, 1) << b.output;
-  EXPECT_NE(b.output.find("7 job(s), 2 ok, 5 failed"), std::string::npos) << b.output;
+  expect_bad_jobs_named(
+      dir, "7 job(s), 2 ok, 5 failed",
+      {{"zlevel-flat", "z-level contouring needs a ball-end mill"},
+       {"zlevel-both", "'params.levels' and 'params.step_down' are both given"},
+       {"pencil-flat", "pencil-cut needs a ball-end mill"},
+       {"pencil-angle", "min_angle must be between 0 and 180 degrees, got 200"},
+       {"pencil-direction",
+        "'params.direction' must be \"any\", \"climb\" or \"conventional\", got \"sideways\""}},
+      {"zlevel-good", "pencil-good"});
   h5::Id f = h5::open_read(dir / "batch.h5");
-  const std::pair<const char*, const char*> want[] = {
-      {"zlevel-flat", "z-level contouring needs a ball-end mill"},
-      {"zlevel-both", "'params.levels' and 'params.step_down' are both given"},
-      {"pencil-flat", "pencil-cut needs a ball-end mill"},
-      {"pencil-angle", "min_angle must be between 0 and 180 degrees, got 200"},
-      {"pencil-direction",
-       "'params.direction' must be \"any\", \"climb\" or \"conventional\", got \"sideways\""},
-  };
-  for (const auto& [name, message] : want) {
-    h5::Id job(H5Gopen2(f, (std::string("/jobs/") + name).c_str(), H5P_DEFAULT));
-    EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter") << name;
-    EXPECT_NE(h5::attr_str(job, "message").find(message), std::string::npos)
-        << name << ": " << h5::attr_str(job, "message");
-  }
-  for (const char* name : {"/jobs/zlevel-good", "/jobs/pencil-good"}) {
-    h5::Id good(H5Gopen2(f, name, H5P_DEFAULT));
-    EXPECT_EQ(h5::attr_str(good, "status"), "ok") << name;
-  }
   // The groove z = |x| at levels 2 and 5: two lines each side, no hole (its ends are open).
   const scan_cli::Stats st{f, "zlevel-good"};
   EXPECT_EQ(st["levels"], 2);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "tests/batch/cli_job_checks.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/mesh_op_cli_support.hpp"
 
@@ -18,7 +19,6 @@ namespace {
 namespace h5 = out::test;
 using test::CmdResult;
 using test::ncpath;
-using test::slurp;
 using namespace mesh_op_cli;
 
 constexpr double kR = 2;  // ball:4; the groove (scan_cli::groove): |x| <= 10, y in [0, 20]
@@ -33,10 +33,7 @@ TEST(PencilCli, AVGrooveGivesOnePathAlongItsFloor) {
                              (dir / "g.h5").string() + " --gcode " + (dir / "g.ngc").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "g.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/pencil", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "operation"), "pencil");
-  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
-  EXPECT_NE(h5::attr_str(job, "params").find("\"step_down\":0.0"), std::string::npos);
+  cli_checks::expect_job_ok(f, "pencil", "pencil", {"\"step_down\":0.0"});
 
   // One cut path at x = 0, tip z = R (sqrt 2 - 1), along the whole groove.
   const double tip = kR * (std::sqrt(2.0) - 1);
@@ -119,9 +116,7 @@ TEST(PencilCli, AVGrooveGivesOnePathAlongItsFloor) {
   EXPECT_GE(st["compute_s"], st["scan_s"]);
 
   // G-code: rapids 5 mm above the groove's top (z = 10).
-  const std::string g = slurp(dir / "g.ngc");
-  EXPECT_NE(g.find("G0 Z15.0000"), std::string::npos);
-  EXPECT_NE(g.find("M2"), std::string::npos);
+  cli_checks::expect_gcode_has(dir / "g.ngc", {"G0 Z15.0000", "M2"});
 }
 
 TEST(PencilCli, StockAndDirection) {
@@ -134,11 +129,7 @@ TEST(PencilCli, StockAndDirection) {
                              (dir / "s.h5").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "s.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/pencil", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
-  const std::string params = h5::attr_str(job, "params");
-  for (const char* p : {"\"stock\":0.3", "\"direction\":\"climb\""})
-    EXPECT_NE(params.find(p), std::string::npos) << p << " in " << params;
+  cli_checks::expect_job_ok(f, "pencil", "", {"\"stock\":0.3", "\"direction\":\"climb\""});
   // The centre of the ball of radius R + s in the 90-degree groove is (R + s) sqrt 2 above
   // its floor; the tool tip R below the centre.
   const double tip = (kR + s) * std::sqrt(2.0) - kR;
@@ -174,8 +165,7 @@ params = { interval = 0.5, step_down = 0, min_angle = 100 }
   const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "out.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/steep", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
+  cli_checks::expect_job_ok(f, "steep", "");
   const ClOut cl = read_cl(f, "steep");
   EXPECT_TRUE(cl.pts.empty());
   EXPECT_TRUE(cl.kind.empty());

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "batch/io/stl_writer.hpp"
+#include "tests/batch/cli_job_checks.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/output/h5_read.hpp"
 #include "tests/batch/scan_cli_support.hpp"
@@ -18,19 +19,8 @@ namespace {
 namespace h5 = out::test;
 using test::CmdResult;
 using test::ncpath;
+using namespace cli_checks;
 using namespace scan_cli;
-
-// The raw bytes of a dataset, read in its own (native) type.
-std::vector<unsigned char> raw(hid_t f, const std::string& path) {
-  h5::Id ds(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "open " + path);
-  h5::Id file_type(H5Dget_type(ds));
-  h5::Id type(H5Tget_native_type(file_type, H5T_DIR_ASCEND));
-  h5::Id space(H5Dget_space(ds));
-  std::vector<unsigned char> out(H5Sget_simple_extent_npoints(space) * H5Tget_size(type));
-  if (!out.empty() && H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-    throw std::runtime_error("read " + path);
-  return out;
-}
 
 TEST(ScanCli, OneAndTwoThreadsWriteIdenticalDatasets) {
   const auto dir = fixture_dir("threads");
@@ -47,11 +37,7 @@ input = "part.stl"
 tool = "ball:6"
 params = { families = "both", interval = 1.5, tolerance = 0.002, margin = 2, chunk_planes = 3 }
 )";
-  for (const char* t : {"1", "2"}) {
-    const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet --threads " + t +
-                               " --out " + (dir / (std::string("t") + t + ".h5")).string());
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-  }
+  ASSERT_NO_FATAL_FAILURE(run_with_one_and_two_threads(dir));
   h5::Id a = h5::open_read(dir / "t1.h5");
   h5::Id b = h5::open_read(dir / "t2.h5");
   EXPECT_EQ((Stats{a, "both"}["threads"]), 1);
@@ -61,12 +47,8 @@ params = { families = "both", interval = 1.5, tolerance = 0.002, margin = 2, chu
         "scan/segment_kind", "scan/segment_element", "scan/segment_start", "scan/segment_end",
         "scan/segment_geometry", "scan/junction_path", "scan/junction_kind",
         "scan/junction_position", "scan/junction_b1", "scan/junction_b2",
-        "scan/junction_element1", "scan/junction_element2", "scan/junction_angle"}) {
-    const std::string path = std::string("/jobs/both/") + d;
-    const auto x = raw(a, path);
-    EXPECT_GT(x.size(), 0u) << d;
-    EXPECT_TRUE(x == raw(b, path)) << d;
-  }
+        "scan/junction_element1", "scan/junction_element2", "scan/junction_angle"})
+    expect_same_dataset(a, b, std::string("/jobs/both/") + d);
   // Both families: x lines (y = -2 ... 42 every 1.5: 30), a rapid, then y lines (30).
   const ScanOut s = read_scan(a, "both");
   const Stats st{a, "both"};
@@ -88,34 +70,20 @@ params = { families = "both", interval = 1.5, tolerance = 0.002, margin = 2, chu
   check_shapes(a, "both", s);
 }
 
-// Exit code 1, `status` in the output and in the file, and `expected` in the message.
-void expect_failure(const std::filesystem::path& dir, const std::string& args,
-                    const std::string& expected) {
-  const std::string out = (dir / "bad.h5").string();
-  const CmdResult r = ncpath("scan " + args + " --quiet --out " + out);
-  EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.output;
-  EXPECT_NE(r.output.find("invalid_parameter"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find(expected), std::string::npos) << expected << " in: " << r.output;
-  h5::Id f = h5::open_read(out);
-  h5::Id job(H5Gopen2(f, "/jobs/scan", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter");
-  EXPECT_NE(h5::attr_str(job, "message").find(expected), std::string::npos);
-}
-
 TEST(ScanCli, ProblemsAreNamed) {
   const auto dir = fixture_dir("problems");
   write_off(dir / "groove.off", groove(false));
   const std::string mesh = "--mesh " + (dir / "groove.off").string();
-  expect_failure(dir, mesh + " --tool flat:4", "needs a ball-end mill");
-  expect_failure(dir, mesh + " --tool bull:4:1", "needs a ball-end mill");
-  expect_failure(dir, mesh + " --tool ball:4 --interval 0", "interval must be a positive number");
-  expect_failure(dir, mesh + " --tool ball:4 --tolerance -1", "tolerance must be a positive");
-  expect_failure(dir, mesh + " --tool ball:4 --rect 5 0 -5 20", "rect must be");
+  expect_failure(dir, "scan", mesh + " --tool flat:4", "needs a ball-end mill");
+  expect_failure(dir, "scan", mesh + " --tool bull:4:1", "needs a ball-end mill");
+  expect_failure(dir, "scan", mesh + " --tool ball:4 --interval 0",
+                 "interval must be a positive number");
+  expect_failure(dir, "scan", mesh + " --tool ball:4 --tolerance -1",
+                 "tolerance must be a positive");
+  expect_failure(dir, "scan", mesh + " --tool ball:4 --rect 5 0 -5 20", "rect must be");
   // CLI11 refuses an unknown family before anything runs, naming the option.
-  const CmdResult r = ncpath("scan " + mesh + " --families z --quiet --out " +
-                             (dir / "z.h5").string());
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.output.find("--families"), std::string::npos) << r.output;
+  expect_refused("scan " + mesh + " --families z --quiet --out " + (dir / "z.h5").string(),
+                 "--families");
 
   // The same in a batch file: each bad job is recorded and the good one still runs.
   std::ofstream(dir / "jobs.toml") << R"(
@@ -144,23 +112,12 @@ input = "groove.off"
 tool = "ball:4"
 params = { interval = 5 }
 )";
-  const CmdResult b = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
-  EXPECT_EQ(b.exit_code, 1) << b.output;
-  EXPECT_NE(b.output.find("4 job(s), 1 ok, 3 failed"), std::string::npos) << b.output;
-  h5::Id f = h5::open_read(dir / "batch.h5");
-  const std::pair<const char*, const char*> want[] = {
-      {"flat", "ball-end mill"},
-      {"interval", "interval must be a positive number of mm, got 0"},
-      {"families", "'params.families' must be \"x\", \"y\" or \"both\", got \"z\""},
-  };
-  for (const auto& [name, message] : want) {
-    h5::Id job(H5Gopen2(f, (std::string("/jobs/") + name).c_str(), H5P_DEFAULT));
-    EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter") << name;
-    EXPECT_NE(h5::attr_str(job, "message").find(message), std::string::npos)
-        << name << ": " << h5::attr_str(job, "message");
-  }
-  h5::Id good(H5Gopen2(f, "/jobs/good", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(good, "status"), "ok");
+  expect_bad_jobs_named(
+      dir, "4 job(s), 1 ok, 3 failed",
+      {{"flat", "ball-end mill"},
+       {"interval", "interval must be a positive number of mm, got 0"},
+       {"families", "'params.families' must be \"x\", \"y\" or \"both\", got \"z\""}},
+      {"good"});
 }
 
 TEST(ScanCli, HelpDocumentsEveryOption) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "tests/batch/cli_job_checks.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/output/h5_read.hpp"
 #include "tests/batch/scan_cli_support.hpp"
@@ -17,7 +18,6 @@ namespace {
 namespace h5 = out::test;
 using test::CmdResult;
 using test::ncpath;
-using test::slurp;
 using namespace scan_cli;
 
 // Ball radius of the groove and pocket tests (ball:4) and the groove's half width: the groove
@@ -156,10 +156,7 @@ gcode = { path = "groove.ngc" }
   const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "out.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/groove", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "operation"), "scan");
-  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
-  EXPECT_NE(h5::attr_str(job, "params").find("\"families\":\"x\""), std::string::npos);
+  cli_checks::expect_job_ok(f, "groove", "scan", {"\"families\":\"x\""});
   const ScanOut s = read_scan(f, "groove");
   // y from 0 to 20 every 2.5: 9 lines, joined by 8 links at depth.
   check_groove(s, 0, 9, 0, 2.5, 0.001);
@@ -204,9 +201,7 @@ gcode = { path = "groove.ngc" }
   EXPECT_EQ(st.text("input_format"), "off");
 
   // G-code: rapids 5 mm above the groove's top (z = 10).
-  const std::string g = slurp(dir / "groove.ngc");
-  EXPECT_NE(g.find("G0 Z15.0000"), std::string::npos);
-  EXPECT_NE(g.find("M2"), std::string::npos);
+  cli_checks::expect_gcode_has(dir / "groove.ngc", {"G0 Z15.0000", "M2"});
   EXPECT_GT(st["gcode_lines"] + st["gcode_arcs"], 0);
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "tests/batch/cli_job_checks.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/mesh_op_cli_support.hpp"
 
@@ -18,7 +19,6 @@ namespace {
 namespace h5 = out::test;
 using test::CmdResult;
 using test::ncpath;
-using test::slurp;
 using namespace mesh_op_cli;
 
 // Ball radius (ball:4); the plate's half width, top; the pocket's half width.
@@ -211,10 +211,7 @@ gcode = { path = "pocket.ngc" }
   const CmdResult r = ncpath("run " + (dir / "jobs.toml").string() + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   h5::Id f = h5::open_read(dir / "out.h5");
-  h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
-  EXPECT_EQ(h5::attr_str(job, "operation"), "zlevel");
-  EXPECT_EQ(h5::attr_str(job, "status"), "ok") << h5::attr_str(job, "message");
-  EXPECT_NE(h5::attr_str(job, "params").find("\"levels\":[0.5,2.0]"), std::string::npos);
+  cli_checks::expect_job_ok(f, "pocket", "zlevel", {"\"levels\":[0.5,2.0]"});
   const ClOut cl = read_cl(f, "pocket");
   const ZLevelOut z = read_zlevel(f, "pocket");
 
@@ -304,10 +301,7 @@ gcode = { path = "pocket.ngc" }
   EXPECT_EQ(st.text("input_format"), "off");
 
   // G-code: rapids 5 mm above the plate's top (z = 3), the contours at their levels.
-  const std::string gc = slurp(dir / "pocket.ngc");
-  EXPECT_NE(gc.find("G0 Z8.0000"), std::string::npos);
-  EXPECT_NE(gc.find("Z0.5000"), std::string::npos);
-  EXPECT_NE(gc.find("M2"), std::string::npos);
+  cli_checks::expect_gcode_has(dir / "pocket.ngc", {"G0 Z8.0000", "Z0.5000", "M2"});
   EXPECT_GT(st["gcode_lines"] + st["gcode_arcs"], 0);
 }
 
