@@ -27,6 +27,17 @@ float query_radius(double d, double p_mag) {
   return pad_up(d + tol::kFloatBoxPad * (1.0 + p_mag));
 }
 
+// Embree point query at p (rounded to float) with a float radius from query_radius.
+RTCPointQuery point_query(const Vec3& p, float radius) {
+  RTCPointQuery pq;
+  pq.x = static_cast<float>(p.x());
+  pq.y = static_cast<float>(p.y());
+  pq.z = static_cast<float>(p.z());
+  pq.time = 0;
+  pq.radius = radius;
+  return pq;
+}
+
 struct Tri {
   Vec3 p[3];  // mm
 };
@@ -189,12 +200,7 @@ MeshDistance::Closest MeshDistance::closest(const Vec3& p, double max_distance) 
   const Impl& m = *impl_;
   Impl::ClosestQuery q{&m, p, p.cwiseAbs().maxCoeff(), max_distance, {}};
   if (m.tris.empty() || !(max_distance >= 0)) return q.best;
-  RTCPointQuery pq;
-  pq.x = static_cast<float>(p.x());
-  pq.y = static_cast<float>(p.y());
-  pq.z = static_cast<float>(p.z());
-  pq.time = 0;
-  pq.radius = query_radius(max_distance, q.p_mag);
+  RTCPointQuery pq = point_query(p, query_radius(max_distance, q.p_mag));
   RTCPointQueryContext ctx;
   rtcInitPointQueryContext(&ctx);
   rtcPointQuery(m.embree.scene(), &pq, &ctx, &Impl::closest_callback, &q);
@@ -236,12 +242,7 @@ std::optional<double> MeshDistance::march(const Vec3& origin, const Vec3& dir, d
     }
     const double span = std::min(2.0 * window, s_max - s);
     Impl::SweepQuery q{&m, x, dir, radius, x.cwiseAbs().maxCoeff(), span};
-    RTCPointQuery pq;
-    pq.x = static_cast<float>(x.x());
-    pq.y = static_cast<float>(x.y());
-    pq.z = static_cast<float>(x.z());
-    pq.time = 0;
-    pq.radius = query_radius(radius + span, q.p_mag);
+    RTCPointQuery pq = point_query(x, query_radius(radius + span, q.p_mag));
     RTCPointQueryContext ctx;
     rtcInitPointQueryContext(&ctx);
     rtcPointQuery(m.embree.scene(), &pq, &ctx, &Impl::sweep_callback, &q);

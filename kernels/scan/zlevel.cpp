@@ -168,7 +168,7 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el) {
   out.reach.resize(n);
   for (std::size_t id = 0; id < n; ++id) {
     double b[4];
-    if (!element_box(el, std::uint32_t(id), b, out.reach[id])) out.reach[id] = -INFINITY;
+    element_box(el, std::uint32_t(id), b, out.reach[id]);  // reach -inf: no region
     out.box[id] = outward_box(b);
   }
   return out;
