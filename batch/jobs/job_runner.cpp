@@ -111,18 +111,6 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
   }
 }
 
-// A z-level contour whose pieces could not be closed is missing from the output (zlevel) or
-// gives no pencil candidates (pencil): the job is ok but says so.
-std::string open_chain_warning(const std::vector<StatValue>& stats) {
-  for (const StatValue& s : stats)
-    if ((s.name == "open_chains" || s.name == "zlevel_open_chains") &&
-        std::holds_alternative<std::int64_t>(s.value) && std::get<std::int64_t>(s.value) > 0)
-      return "warning: " + std::to_string(std::get<std::int64_t>(s.value)) +
-             " z-level contour chain(s) could not be closed and are left out (stats/" + s.name +
-             "); please report the mesh";
-  return "";
-}
-
 // Runs one job; fills stats and returns the outcome. Never throws for job-level problems.
 JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
                    std::vector<StatValue>& stats) {
@@ -196,6 +184,16 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
 }
 
 }  // namespace
+
+std::string open_chain_warning(const std::vector<out::StatValue>& stats) {
+  for (const out::StatValue& s : stats)
+    if ((s.name == "open_chains" || s.name == "zlevel_open_chains") &&
+        std::holds_alternative<std::int64_t>(s.value) && std::get<std::int64_t>(s.value) > 0)
+      return "warning: " + std::to_string(std::get<std::int64_t>(s.value)) +
+             " z-level contour chain(s) could not be closed and are left out (stats/" + s.name +
+             "); please report the mesh";
+  return "";
+}
 
 std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& obs) {
   par::ThreadLimit limit(batch.threads);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "batch/jobs/job_spec.hpp"
+#include "batch/output/cl_writer.hpp"
 
 namespace ncpath::jobs {
 
@@ -25,6 +26,11 @@ struct BatchObserver {
   std::function<void(std::uint64_t done, std::uint64_t total)> progress;
   std::function<void(const JobOutcome&)> job_finished;
 };
+
+// The warning an ok job carries as its message ("" when none): z-level contour chains that
+// could not be closed (stats open_chains of zlevel, zlevel_open_chains of pencil) are missing
+// from the output or give no pencil candidates.
+std::string open_chain_warning(const std::vector<out::StatValue>& stats);
 
 // Throws std::runtime_error only when the output file itself cannot be written.
 std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& observer);
