@@ -81,26 +81,19 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   st.facets = el.facet_count();
   st.edges = el.edge_count();
   st.vertices = el.vertex_count();
-  // Facets and edges by their highest point (tool-tip z at which their region appears).
-  const std::size_t nfe = el.facet_count() + el.edge_count();
-  std::vector<double> key(nfe);
-  par::for_each(nfe, 16384, [&](std::size_t id) {
-    if (id < el.facet_count()) {
-      const auto& t = el.facet_tri[id];
-      key[id] = std::max({t[0].z(), t[1].z(), t[2].z()}) - R;
-    } else {
-      const auto& ev = el.edge_vertices[id - el.facet_count()];
-      key[id] = std::max(el.points[ev[0]].z(), el.points[ev[1]].z());
-    }
-  });
-  std::vector<std::uint32_t> by_top(nfe);
-  std::iota(by_top.begin(), by_top.end(), 0u);
-  par::sort(by_top.begin(), by_top.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return key[a] != key[b] ? key[a] > key[b] : a < b;
-  });
+  // Facets and edges by their reach (the highest ball-centre height at which their region
+  // can be non-empty, kernels/scan/zlevel.hpp ZLevelElementBoxes): a level's candidates are a
+  // prefix (the kernel's own test then drops those exactly at their reach where it is strict).
   const ZLevelElementBoxes boxes = zlevel_element_boxes(el);
   ZLevelParams kernel;
   kernel.boxes = &boxes;
+  const std::size_t nfe = el.facet_count() + el.edge_count();
+  const std::vector<double>& reach = boxes.reach;
+  std::vector<std::uint32_t> by_top(nfe);
+  std::iota(by_top.begin(), by_top.end(), 0u);
+  par::sort(by_top.begin(), by_top.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return reach[a] != reach[b] ? reach[a] > reach[b] : a < b;
+  });
   const Aabb3 box = bounding_box(mesh);
   st.top_z = box.hi.z();
   st.bottom_z = box.lo.z();
@@ -117,9 +110,10 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   // records are numbered per chunk and shifted when the chunk is merged.
   auto run_level = [&](std::size_t i, LevelOut& out) {
     const double z = levels[i];
+    const double zc = z + el.radius;  // as the kernel computes it
     const auto n = std::size_t(
-        std::lower_bound(by_top.begin(), by_top.end(), z,
-                         [&](std::uint32_t id, double lv) { return key[id] >= lv; }) -
+        std::lower_bound(by_top.begin(), by_top.end(), zc,
+                         [&](std::uint32_t id, double c) { return reach[id] >= c; }) -
         by_top.begin());
     const ZLevelResult r =
         zlevel_contours(el, std::span<const std::uint32_t>(by_top.data(), n), z, kernel);
