@@ -89,8 +89,15 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   kernel.boxes = &boxes;
   const std::size_t nfe = el.facet_count() + el.edge_count();
   const std::vector<double>& reach = boxes.reach;
-  std::vector<std::uint32_t> by_top(nfe);
-  std::iota(by_top.begin(), by_top.end(), 0u);
+  // Unreachable edges are left out: the kernel skips them (ZLevelParams::skip_unreachable),
+  // and their end vertices come from the reachable edges there (a vertex is reachable only
+  // through one of its edges, which reaches at least as high).
+  std::vector<std::uint32_t> by_top;
+  by_top.reserve(nfe);
+  for (std::uint32_t id = 0; id < nfe; ++id)
+    if (id < el.facet_count() || el.edge_reachable.size() != el.edge_count() ||
+        el.edge_reachable[id - el.facet_count()])
+      by_top.push_back(id);
   par::sort(by_top.begin(), by_top.end(), [&](std::uint32_t a, std::uint32_t b) {
     return reach[a] != reach[b] ? reach[a] > reach[b] : a < b;
   });
@@ -106,17 +113,30 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   std::sort(levels.begin(), levels.end(), std::greater<>());
   st.levels = levels.size();
 
+  // The levels of a chunk know the region of the previous chunk's last level to lie inside
+  // theirs (kernels/scan/zlevel.hpp ZLevelInside): the same for any thread count. Their
+  // candidates leave out the elements lying deep inside that region (zlevel_filter_deep).
+  ZLevelInside inside, next_inside;
+  std::size_t chunk_end = 0;
+  std::vector<std::uint32_t> filtered;  // by_top[0, filtered_n) less the deep ones
+  std::size_t filtered_n = 0;
+  const std::vector<std::uint32_t>* cand = &by_top;
+  auto prefix = [&](const std::vector<std::uint32_t>& ids, double z) {
+    const double zc = z + el.radius;  // as the kernel computes it
+    return std::size_t(std::lower_bound(ids.begin(), ids.end(), zc,
+                                        [&](std::uint32_t id, double c) { return reach[id] >= c; }) -
+                       ids.begin());
+  };
   // Cut path index of each level's first contour is only known after the levels before it:
   // records are numbered per chunk and shifted when the chunk is merged.
   auto run_level = [&](std::size_t i, LevelOut& out) {
     const double z = levels[i];
-    const double zc = z + el.radius;  // as the kernel computes it
-    const auto n = std::size_t(
-        std::lower_bound(by_top.begin(), by_top.end(), zc,
-                         [&](std::uint32_t id, double c) { return reach[id] >= c; }) -
-        by_top.begin());
+    const std::size_t n = prefix(*cand, z);
+    ZLevelParams kp = kernel;
+    kp.inside = &inside;
     const ZLevelResult r =
-        zlevel_contours(el, std::span<const std::uint32_t>(by_top.data(), n), z, kernel);
+        zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), z, kp);
+    if (i + 1 == chunk_end) next_inside = zlevel_inside(r, 0.5 * el.radius);
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
     out.repaired_links = r.stats.repaired_links;
@@ -182,7 +202,35 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   auto compute_chunk = [&](std::size_t c0, ZLevelChunk& merged) {
     const std::size_t c1 = std::min(levels.size(), c0 + p.chunk_levels);
     outs.assign(c1 - c0, LevelOut{});
+    chunk_end = c1;
+    next_inside = ZLevelInside{};
+    cand = &by_top;
+    if (!inside.empty()) {
+      // Elements left out for an earlier chunk's region stay out (they lie at least half as
+      // deep in this one); those not tested yet join in by_top order.
+      if (inside.blocked_cells > 0) {
+        filtered.clear();
+        filtered_n = 0;
+      }
+      const std::size_t n = prefix(by_top, levels[c1 - 1]);
+      std::vector<std::uint32_t> test(filtered);
+      test.insert(test.end(), by_top.begin() + std::ptrdiff_t(filtered_n),
+                  by_top.begin() + std::ptrdiff_t(std::max(n, filtered_n)));
+      filtered_n = std::max(n, filtered_n);
+      constexpr std::size_t kBlock = 16384;
+      const std::size_t blocks = (test.size() + kBlock - 1) / kBlock;
+      std::vector<std::vector<std::uint32_t>> kept(blocks);
+      par::for_each(blocks, 1, [&](std::size_t b) {
+        const std::size_t b0 = b * kBlock, b1 = std::min(test.size(), b0 + kBlock);
+        zlevel_filter_deep(el, std::span<const std::uint32_t>(test.data() + b0, b1 - b0), inside,
+                           kept[b]);
+      });
+      filtered.clear();
+      for (const auto& k : kept) filtered.insert(filtered.end(), k.begin(), k.end());
+      cand = &filtered;
+    }
     par::for_each(c1 - c0, 1, [&](std::size_t k) { run_level(c0 + k, outs[k]); });
+    std::swap(inside, next_inside);
     merged = ZLevelChunk{};
     for (LevelOut& o : outs) {
       ZLevelChunk& ch = o.chunk;

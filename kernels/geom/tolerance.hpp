@@ -280,6 +280,22 @@ inline constexpr double kZLevelRepair = 1e-4;
 // mm. A cell of the z-level pruning grid is interior when it lies this deep inside one region.
 inline constexpr double kZLevelCellMargin = 1e-9;
 
+// mm. With a higher level's region known to lie inside U (kernels/scan/zlevel.hpp
+// ZLevelInside), regions lying this deep inside it are dropped. Smaller drops more of a steep
+// wall's stacked regions (their boundaries step inwards by the wall's run per level) but
+// makes the pieces near the known boundary that must be certified shorter (about a quarter of
+// this).
+inline constexpr double kZLevelInsideDepth = 0.005;
+
+// mm. A curve piece (or grid cell) is certified inside the known region (ZLevelInside) when
+// it lies this deep inside the region's polygon: well above the rounding of the contour
+// points the polygon is made of (~1e-11 mm), which lie on the exact boundary.
+inline constexpr double kZLevelInsideMargin = 1e-6;
+
+// mm. The same margin when the contours had repaired links (kZLevelRepair): five times their
+// largest gap, a tenth of kZLevelInsideDepth.
+inline constexpr double kZLevelInsideRepaired = 5e-4;
+
 // mm. Root isolation on conic arcs stops at sub-arcs shorter than this: two crossings closer
 // than this may both be missed (the curves then touch within rounding).
 inline constexpr double kZLevelRootLength = 1e-10;

@@ -273,6 +273,42 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       if (build_region(el, id, lv, params.skip_unreachable, g)) mark_interior(g, lv, grid);
     }
   }
+  // Cells inside the known inside region (a higher level's contours) are interior too.
+  const ZLevelInside* inside =
+      params.inside && !params.inside->empty() ? params.inside : nullptr;
+  if (inside)
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t c = std::size_t(j) * grid.nx + i;
+        if (grid.interior[c]) continue;
+        const double x0 = grid.gx(i), y0 = grid.gy(j), x1 = x0 + grid.cell, y1 = y0 + grid.cell;
+        const Vec2 sq[4] = {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
+        if (inside_contains(*inside, sq, 4, 0, inside->margin)) {
+          grid.interior[c] = 1;
+          ++st.inside_cells;
+        }
+      }
+  // A region deep inside it (tol::kZLevelInsideDepth) is dropped; its shape is tested through
+  // a hull that holds it: the projected offset triangle, the capsule of radius R around the
+  // edge's shadow, the disc.
+  auto deep_inside = [&](const Region& g) {
+    if (!inside) return false;
+    const double depth = tol::kZLevelInsideDepth;
+    bool deep = false;
+    if (g.kind == RegionKind::kFacet) {
+      const auto& t = el.facet_tri[g.index];
+      const Vec2 p[3] = {Vec2(t[0].x(), t[0].y()), Vec2(t[1].x(), t[1].y()),
+                         Vec2(t[2].x(), t[2].y())};
+      deep = inside_contains(*inside, p, 3, 0, depth);
+    } else if (g.kind == RegionKind::kEdge) {
+      const Vec2 p[2] = {Vec2(g.a.x(), g.a.y()), Vec2(g.a.x() + g.d.x(), g.a.y() + g.d.y())};
+      deep = inside_contains(*inside, p, 2, lv.R, depth);
+    } else {
+      deep = inside_contains(*inside, &g.c, 1, g.r, depth);
+    }
+    st.inside_regions += deep;
+    return deep;
+  };
   grid.sum.assign(std::size_t(grid.nx + 1) * (grid.ny + 1), 0);
   for (int j = 0; j < grid.ny; ++j)
     for (int i = 0; i < grid.nx; ++i) {
@@ -308,14 +344,16 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       mark_vertex_point(ev[1]);
     }
     Region g;
-    if (build_region(el, id, lv, params.skip_unreachable, g) && grid.any_open(g.box))
+    if (build_region(el, id, lv, params.skip_unreachable, g) && grid.any_open(g.box) &&
+        !deep_inside(g))
       regions.push_back(g);
   }
   for (std::size_t w = 0; w < vbits.size(); ++w)
     for (std::uint64_t m = vbits[w]; m; m &= m - 1) {
       const auto v = std::uint32_t(w * 64 + std::countr_zero(m));
       Region g;
-      if (build_region(el, el.vertex_id(v), lv, params.skip_unreachable, g) && grid.any_open(g.box))
+      if (build_region(el, el.vertex_id(v), lv, params.skip_unreachable, g) &&
+          grid.any_open(g.box) && !deep_inside(g))
         regions.push_back(g);
     }
   st.regions = regions.size();
@@ -353,7 +391,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       act_begin[gi] = std::uint32_t(act.size());
       for (std::uint32_t c = regions[gi].curve_begin; c < regions[gi].curve_end; ++c) {
         runs.clear();
-        uncovered_runs(curves[c], grid, region_cells, regions, rbox, lv, runs);
+        uncovered_runs(curves[c], grid, region_cells, regions, rbox, lv, inside, runs);
         for (const auto& r : runs) act.push_back(sub_curve(curves[c], r.first, r.second));
       }
     }

@@ -131,6 +131,8 @@ struct ZLevelStats {
   std::uint64_t open_chains = 0;       // chains that could not be closed (0 in a valid result)
   std::uint64_t repaired_links = 0;    // ends linked across a gap of up to tol::kZLevelRepair
   std::uint64_t convex_junctions = 0;  // convex corners (only at floors exactly at the level)
+  std::uint64_t inside_regions = 0;    // regions dropped deep inside ZLevelParams::inside
+  std::uint64_t inside_cells = 0;      // interior cells found inside ZLevelParams::inside
 };
 
 struct ZLevelResult {
@@ -150,6 +152,52 @@ struct ZLevelElementBoxes {
 };
 ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
 
+// A region known to lie inside U (see above) at the levels below the one it was made from:
+// U only grows as the level goes down, so a higher level's contours bound a part of U. Its
+// loops are polygons inscribed in the contour segments (chords of a convex arc lie inside its
+// region), indexed on a uniform grid: per cell the polygon edges that touch it and a reference
+// point whose inside/outside parity is known. Build with zlevel_inside; the kernel
+// (ZLevelParams::inside) then
+//   - marks the grid cells that lie inside it as interior,
+//   - drops the regions lying tol::kZLevelInsideDepth deep inside it (their boundary is deep
+//     inside U; their curves are never built): the stacked regions of a steep wall above the
+//     level, most of those near the boundary,
+//   - certifies the curve pieces lying `margin` deep inside it as covered; pieces not
+//     certified, halved while they may hold a point half tol::kZLevelInsideDepth deep (down
+//     to a quarter of that), hold no point of a dropped region, so the remaining regions
+//     decide them exactly as all regions would.
+// The caller may leave out of the candidates elements whose region lies half that depth
+// inside (zlevel_filter_deep, run against the region of a higher level: a region only grows
+// going down, and the polygons lie within a quarter of the depth of the contours).
+// The contours are the same as without it (up to rounding where they are split).
+struct ZLevelInside {
+  double x0 = 0, y0 = 0, cell = 1;
+  int nx = 0, ny = 0;
+  std::vector<std::array<Vec2, 2>> edges;  // polygon edges, then the sides of blocked cells
+  std::uint32_t polygon_edges = 0;         // edges[0, polygon_edges) count for the parity
+  std::vector<std::uint32_t> start, ids;   // CSR: the edges whose box meets each cell
+  std::vector<Vec2> ref;                   // per cell: the reference point
+  std::vector<std::uint8_t> ref_state;     // 0 outside, 1 inside, 2 blocked (no reference)
+  std::vector<std::uint8_t> far;  // per cell: cells (Chebyshev, capped) to the nearest with an edge
+  // mm: tol::kZLevelInsideMargin, or tol::kZLevelInsideRepaired when the contours had repaired
+  // links (the polygon may then leave U by up to their gaps there).
+  double margin = 0;
+  std::uint32_t blocked_cells = 0;
+  bool empty() const { return nx == 0; }
+};
+
+// The inside region given by the contours of a higher level (empty when it has open chains:
+// its loops are then not known to bound U). cell: the index's cell, mm (0: 1 mm).
+ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell = 0);
+
+// Appends to `out` the ids (in their order) of facets and edges whose region may not lie
+// tol::kZLevelInsideDepth deep inside `inside` at some level (the others the kernel would drop
+// anyway: leaving them out of its candidates changes nothing; at lower levels, with the
+// region of a level below this one, they still lie half as deep, see ZLevelInside, unless
+// that region has blocked cells). A quick test per element: most lie far inside or outside.
+void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t> ids,
+                        const ZLevelInside& inside, std::vector<std::uint32_t>& out);
+
 struct ZLevelParams {
   double cell = 0;  // pruning grid cell, mm; 0: R / 2 (raised if the grid would be huge)
   bool skip_unreachable = true;  // use OffsetElements' edge/vertex reachability flags
@@ -157,11 +205,15 @@ struct ZLevelParams {
   double link = tol::kZLevelLink;
   // Optional: zlevel_element_boxes(el) of the same elements (the result is the same).
   const ZLevelElementBoxes* boxes = nullptr;
+  // Optional: zlevel_inside(r) of the result r of a higher level (the result is the same, up
+  // to rounding where curves are split).
+  const ZLevelInside* inside = nullptr;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any
 // order, repeats allowed); it must contain every facet and edge whose region is not empty
-// (vertices are derived from the edges); passing all ids is correct.
+// (vertices are derived from the edges), except, with params.inside, those whose region lies
+// deep inside it (see ZLevelInside); passing all ids is correct.
 ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
                              double tip_z, const ZLevelParams& params = {});
 

@@ -67,7 +67,8 @@ bool structural_pair(const OffsetElements& el, const Region& p, const Region& q)
 
 void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
                     const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
-                    const Level& lv, std::vector<std::pair<double, double>>& runs) {
+                    const Level& lv, const ZLevelInside* inside,
+                    std::vector<std::pair<double, double>>& runs) {
   const double m = tol::kZLevelCellMargin;
   const bool arc = c.kind != CurveKind::kLine;
   const double speed = arc ? std::sqrt(c.e1.squaredNorm() + c.e2.squaredNorm()) : 1.0;
@@ -75,12 +76,19 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
   if (arc) step = std::min(step, std::numbers::pi / 4);
   const int n = std::max(1, int(std::ceil(c.len / step)));
   std::uint32_t last = kNone;
-  // Certified: in interior cells, or its hull (ends and, for arcs, the tangents' crossing)
-  // strictly inside one region other than c's own.
+  // The hull of the sub-piece: its ends and, for arcs, the tangents' crossing.
+  auto hull = [&](double s0, double s1, const Vec2& p0, const Vec2& p1, Vec2* h) {
+    h[0] = p0;
+    h[1] = p1;
+    if (!arc) return 2;
+    h[2] = p0 + std::tan(0.5 * (s1 - s0)) * curve_tangent(c, s0);
+    return 3;
+  };
+  // Certified: in interior cells, or its hull inside the known inside region or strictly
+  // inside one region other than c's own.
   auto certified = [&](double s0, double s1, const Vec2& p0, const Vec2& p1) {
-    Vec2 h[3] = {p0, p1, p0};
-    int nh = 2;
-    if (arc) h[nh++] = p0 + std::tan(0.5 * (s1 - s0)) * curve_tangent(c, s0);
+    Vec2 h[3];
+    const int nh = hull(s0, s1, p0, p1, h);
     double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (int q = 0; q < nh; ++q) {
       b[0] = std::min(b[0], h[q].x());
@@ -89,7 +97,8 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
       b[3] = std::max(b[3], h[q].y());
     }
     if (!grid.any_open(b)) return true;
-    auto inside = [&](std::uint32_t gi) {
+    if (inside && inside_contains(*inside, h, nh, 0, inside->margin)) return true;
+    auto in_region = [&](std::uint32_t gi) {
       const Box4f& gb = rbox[gi];
       if (gi == c.region || b[0] < gb[0] || b[1] < gb[1] || b[2] > gb[2] || b[3] > gb[3])
         return false;
@@ -98,15 +107,18 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
         if (!(region_phi(g, h[q], lv) < -m)) return false;
       return true;
     };
-    if (last != kNone && inside(last)) return true;
-    const int cell = grid.at(0.5 * (p0 + p1));
+    if (last != kNone && in_region(last)) return true;
+    // A region holding the hull has its value below -m at every point of it (values are
+    // convex), the chord's midpoint too: at the centre below the cutoff from the nearest.
+    const Vec2 mid = 0.5 * (p0 + p1);
+    const int cell = grid.at(mid);
     const Vec2 centre = grid.centre(cell);
-    double d = 0;
-    for (int q = 0; q < nh; ++q) d = std::max(d, (h[q] - centre).norm());
+    double d = (mid - centre).norm();
+    for (int q = 0; q < nh; ++q) d = std::min(d, (h[q] - centre).norm());
     const double cutoff = depth_cutoff(d, lv.R, -m);
     for (std::uint32_t q = cells.start[cell]; q < cells.start[cell + 1]; ++q) {
       if (cells.depth[q] >= cutoff) break;
-      if (inside(cells.ids[q])) {
+      if (in_region(cells.ids[q])) {
         last = cells.ids[q];
         return true;
       }
@@ -124,11 +136,33 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
   // nearly coincident on a CAD wall stored in floats) are each covered by a neighbour except
   // near their tangent joints, but over a whole step only by several regions together; left
   // whole, every pair of them would be intersected and its pieces classified.
-  constexpr int kHalvings = 2;
+  // With a known inside region the stacked regions are mostly dropped: once is enough.
+  const int kHalvings = inside ? 1 : 2;
+  // With a known inside region, regions half tol::kZLevelInsideDepth (or more) deep inside it
+  // may have been dropped: a sub-piece left uncertified is halved while it may still hold a
+  // point that deep, so that every such point ends in a certified half (a half shorter than a
+  // quarter of that depth around one is within the margin of nothing).
+  const double deep = 0.5 * tol::kZLevelInsideDepth;
+  auto refine = [&](auto&& self, double s0, double s1, const Vec2& p0, const Vec2& p1) -> void {
+    Vec2 h[3];
+    const int nh = hull(s0, s1, p0, p1, h);
+    double rho = 0;
+    for (int q = 1; q < nh; ++q) rho = std::max(rho, (h[q] - h[0]).norm());
+    if (rho < deep / 4 || inside_depth_bound(*inside, h, nh, deep) < deep)
+      return add_run(s0, s1);
+    const double sm = 0.5 * (s0 + s1);
+    const Vec2 pm = curve_point(c, sm);
+    for (int half = 0; half < 2; ++half) {
+      const double a = half ? sm : s0, b = half ? s1 : sm;
+      const Vec2 &pa = half ? pm : p0, &pb = half ? p1 : pm;
+      const int n2 = hull(a, b, pa, pb, h);
+      if (!inside_contains(*inside, h, n2, 0, inside->margin)) self(self, a, b, pa, pb);
+    }
+  };
   auto visit = [&](auto&& self, double s0, double s1, const Vec2& p0, const Vec2& p1,
                    int depth) -> void {
     if (certified(s0, s1, p0, p1)) return;
-    if (depth == kHalvings) return add_run(s0, s1);
+    if (depth == kHalvings) return inside ? refine(refine, s0, s1, p0, p1) : add_run(s0, s1);
     const double sm = 0.5 * (s0 + s1);
     const Vec2 pm = curve_point(c, sm);
     self(self, s0, sm, p0, pm, depth + 1);

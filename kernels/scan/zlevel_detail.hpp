@@ -224,11 +224,14 @@ bool structural_pair(const OffsetElements& el, const Region& p, const Region& q)
 // Appends to `runs` the parameter intervals of curve c that are not certified inside U: c is
 // cut into sub-pieces of about a cell; one is certified when it lies in interior cells or its
 // hull (ends and, for arcs, the tangents' crossing) lies strictly inside one region other
-// than c's own. Crossings in certified parts cannot be on the boundary of U. `cells` lists
-// the regions per open cell, `rbox` their boxes as outward_box.
+// than c's own, or (with a known inside region) tol::kZLevelInsideMargin deep inside that;
+// sub-pieces that may hold points tol::kZLevelInsideDepth deep inside it are halved until
+// they are certified or shown not to. Crossings in certified parts cannot be on the boundary
+// of U. `cells` lists the regions per open cell, `rbox` their boxes as outward_box.
 void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
                     const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
-                    const Level& lv, std::vector<std::pair<double, double>>& runs);
+                    const Level& lv, const ZLevelInside* inside,
+                    std::vector<std::pair<double, double>>& runs);
 
 // Appends the tangent joints as splits: each on the nearest active curve (within 1e-6 mm,
 // parameter in range) of the joint's target element, else of alt[0], alt[1]; a vertex
@@ -248,6 +251,18 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
                      const std::vector<Box4f>& rbox, const Grid& grid,
                      const CellLists& region_cells, const Level& lv, const ZLevelParams& params,
                      ZLevelStats& st, std::vector<KeptPiece>& kept);
+
+// ---- the known inside region (zlevel_inside.cpp, ZLevelInside in zlevel.hpp) ----
+
+// Whether the shape conv(poly[0, n)) grown by r (n <= 4: a disc, a capsule, a triangle or a
+// quadrilateral) lies `margin` deep inside q's polygon: its first point is inside and no
+// polygon edge (nor blocked cell) comes within r + margin of the hull.
+bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, double margin);
+
+// An upper bound of the depth inside q's polygon (the distance to its boundary; none outside)
+// of the points of conv(hull[0, n)): the smallest over the polygon edges near it of the
+// largest distance of a hull corner to the edge, capped at `limit`.
+double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double limit);
 
 // ---- loops (zlevel_loops.cpp) ----
 

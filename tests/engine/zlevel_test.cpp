@@ -157,6 +157,41 @@ TEST(ZLevel, OneAndTwoThreadsGiveIdenticalOutput) {
   }
 }
 
+// Levels after the first chunk use the region of the previous chunk's last level (regions and
+// candidates deep inside it left out, kernels/scan/zlevel.hpp ZLevelInside): with one level a
+// chunk (every level but the first uses the level above) the contours equal those of one chunk
+// for all levels (none does), up to rounding where curves are split; fewer candidates.
+TEST(ZLevel, KnownInsideRegionGivesTheSameContours) {
+  const TriangleMesh mesh = test_meshes::load("anchor_dense");
+  ZLevelOpParams p;
+  p.step_down = 4;
+  p.chunk_levels = 1000;
+  const Collected plain = contour(mesh, ball_cutter(5), p);
+  p.chunk_levels = 1;
+  const Collected chained = contour(mesh, ball_cutter(5), p);
+  EXPECT_EQ(plain.stats.open_chains, 0u);
+  EXPECT_EQ(chained.stats.open_chains, 0u);
+  EXPECT_LT(chained.stats.candidates, plain.stats.candidates / 2);
+  EXPECT_EQ(plain.level, chained.level);
+  ASSERT_EQ(plain.segments.size(), chained.segments.size());
+  for (std::size_t i = 0; i < plain.segments.size(); ++i) {
+    const ZLevelSegmentRecord &a = plain.segments[i], &b = chained.segments[i];
+    EXPECT_EQ(a.path, b.path);
+    EXPECT_EQ(a.kind, b.kind);
+    EXPECT_EQ(a.element.kind, b.element.kind);
+    EXPECT_EQ(a.element.a, b.element.a);
+    EXPECT_EQ(a.element.b, b.element.b);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(a.start[k], b.start[k], 1e-9) << "segment " << i;
+      EXPECT_NEAR(a.end[k], b.end[k], 1e-9) << "segment " << i;
+    }
+  }
+  ASSERT_EQ(plain.junctions.size(), chained.junctions.size());
+  for (std::size_t i = 0; i < plain.junctions.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(plain.junctions[i].position[k], chained.junctions[i].position[k], 1e-9);
+}
+
 TEST(ZLevel, RejectsBadInput) {
   std::mt19937_64 rng(1);
   const TriangleMesh mesh = test_meshes::terrain(rng, 4);
