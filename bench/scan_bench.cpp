@@ -1,7 +1,7 @@
 // Curve-based scanning kernels (issue 5) on real meshes (datasets/cache/meshes, fit to
 // 200 mm, ball D = 5): one drive plane (slice the trimmed offset elements it reaches, upper
 // envelope, CL curve) through the middle of bunny00 and fandisk, and one z-level contour at
-// mid height, single-threaded. The plane benchmarks compare trimmed elements (the engine's
+// mid height, single-threaded (also knowing the region of the level above to lie inside). The plane benchmarks compare trimmed elements (the engine's
 // choice) with whole cylinders and spheres: same curve, far more pieces.
 // Counters: pieces, envelope decisions, segments / contours of the last iteration.
 #include <benchmark/benchmark.h>
@@ -87,6 +87,27 @@ void BM_ZLevel(benchmark::State& state, const std::string& name) {
   state.counters["open_chains"] = double(r.stats.open_chains);
 }
 
+// The same level knowing the region of the level 1 mm above to lie inside (ZLevelInside, as
+// the engine's chunks do): same contours, the regions deep inside it dropped.
+void BM_ZLevelInside(benchmark::State& state, const std::string& name) {
+  const Prepared& p = prepared(name);
+  std::vector<std::uint32_t> all(p.el.facet_count() + p.el.edge_count());
+  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const double z = 0.5 * (p.box.lo.z() + p.box.hi.z()) + 0.0123;
+  const ZLevelInside inside = zlevel_inside(zlevel_contours(p.el, all, z + 1), 0.5 * p.el.radius);
+  ZLevelParams params;
+  params.inside = &inside;
+  ZLevelResult r;
+  for (auto _ : state) {
+    r = zlevel_contours(p.el, all, z, params);
+    benchmark::DoNotOptimize(r.contours.data());
+  }
+  state.counters["contours"] = double(r.contours.size());
+  state.counters["regions"] = double(r.stats.regions);
+  state.counters["dropped"] = double(r.stats.inside_regions);
+  state.counters["open_chains"] = double(r.stats.open_chains);
+}
+
 BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_trimmed, std::string("bunny00"), true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_whole, std::string("bunny00"), false)
@@ -97,6 +118,12 @@ BENCHMARK_CAPTURE(BM_ScanPlane, fandisk_whole, std::string("fandisk"), false)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ZLevel, bunny00_mid, std::string("bunny00"))->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ZLevel, fandisk_mid, std::string("fandisk"))->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevel, anchor_dense_mid, std::string("anchor_dense"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevelInside, bunny00_mid, std::string("bunny00"))
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevelInside, anchor_dense_mid, std::string("anchor_dense"))
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace ncpath
