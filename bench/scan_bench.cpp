@@ -1,8 +1,9 @@
 // Curve-based scanning kernels (issue 5) on real meshes (datasets/cache/meshes, fit to
 // 200 mm, ball D = 5): one drive plane (slice the trimmed offset elements it reaches, upper
 // envelope, CL curve) through the middle of bunny00 and fandisk, and one z-level contour at
-// mid height, single-threaded (also knowing the region of the level above to lie inside). The plane benchmarks compare trimmed elements (the engine's
-// choice) with whole cylinders and spheres: same curve, far more pieces.
+// mid height (also knowing the region of the level above to lie inside), single-threaded.
+// The plane benchmarks compare trimmed elements (the engine's choice) with whole cylinders
+// and spheres: same curve, far more pieces.
 // Counters: pieces, envelope decisions, segments / contours of the last iteration.
 #include <benchmark/benchmark.h>
 

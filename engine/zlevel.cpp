@@ -123,9 +123,10 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   const std::vector<std::uint32_t>* cand = &by_top;
   auto prefix = [&](const std::vector<std::uint32_t>& ids, double z) {
     const double zc = z + el.radius;  // as the kernel computes it
-    return std::size_t(std::lower_bound(ids.begin(), ids.end(), zc,
-                                        [&](std::uint32_t id, double c) { return reach[id] >= c; }) -
-                       ids.begin());
+    return std::size_t(
+        std::lower_bound(ids.begin(), ids.end(), zc,
+                         [&](std::uint32_t id, double c) { return reach[id] >= c; }) -
+        ids.begin());
   };
   // Cut path index of each level's first contour is only known after the levels before it:
   // records are numbered per chunk and shifted when the chunk is merged.

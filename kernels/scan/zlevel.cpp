@@ -274,8 +274,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
   }
   // Cells inside the known inside region (a higher level's contours) are interior too.
-  const ZLevelInside* inside =
-      params.inside && !params.inside->empty() ? params.inside : nullptr;
+  const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
   if (inside)
     for (int j = 0; j < grid.ny; ++j)
       for (int i = 0; i < grid.nx; ++i) {

@@ -148,8 +148,7 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
     const int nh = hull(s0, s1, p0, p1, h);
     double rho = 0;
     for (int q = 1; q < nh; ++q) rho = std::max(rho, (h[q] - h[0]).norm());
-    if (rho < deep / 4 || inside_depth_bound(*inside, h, nh, deep) < deep)
-      return add_run(s0, s1);
+    if (rho < deep / 4 || inside_depth_bound(*inside, h, nh, deep) < deep) return add_run(s0, s1);
     const double sm = 0.5 * (s0 + s1);
     const Vec2 pm = curve_point(c, sm);
     for (int half = 0; half < 2; ++half) {

@@ -62,8 +62,8 @@ int cell_of(const ZLevelInside& q, const Vec2& x) {
 }
 
 // Cells whose square meets the box [x0, x1] x [y0, y1], clamped to the grid; false if none.
-bool cell_range(const ZLevelInside& q, double x0, double y0, double x1, double y1, int& i0,
-                int& j0, int& i1, int& j1) {
+bool cell_range(const ZLevelInside& q, double x0, double y0, double x1, double y1, int& i0, int& j0,
+                int& i1, int& j1) {
   const double fx0 = std::floor((x0 - q.x0) / q.cell), fx1 = std::floor((x1 - q.x0) / q.cell);
   const double fy0 = std::floor((y0 - q.y0) / q.cell), fy1 = std::floor((y1 - q.y0) / q.cell);
   if (!(fx1 >= 0 && fy1 >= 0 && fx0 < q.nx && fy0 < q.ny)) return false;
@@ -146,8 +146,10 @@ double clearance(const ZLevelInside& q, const Vec2* poly, int n, double r, doubl
         const std::uint32_t e = q.ids[k];
         if (polygon_only && e >= q.polygon_edges) continue;
         const Vec2 &a = q.edges[e][0], &z = q.edges[e][1];
-        const double gx = std::max({0.0, std::min(a.x(), z.x()) - b[2], b[0] - std::max(a.x(), z.x())});
-        const double gy = std::max({0.0, std::min(a.y(), z.y()) - b[3], b[1] - std::max(a.y(), z.y())});
+        const double gx =
+            std::max({0.0, std::min(a.x(), z.x()) - b[2], b[0] - std::max(a.x(), z.x())});
+        const double gy =
+            std::max({0.0, std::min(a.y(), z.y()) - b[3], b[1] - std::max(a.y(), z.y())});
         if (gx * gx + gy * gy >= (best + r) * (best + r)) continue;
         best = std::min(best, seg_hull(a, z, poly, n) - r);
         if (best < 0) return best;
@@ -161,7 +163,8 @@ double clearance(const ZLevelInside& q, const Vec2* poly, int n, double r, doubl
 ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
   ZLevelInside q;
   if (higher.contours.empty() || higher.stats.open_chains > 0) return q;
-  q.margin = higher.stats.repaired_links > 0 ? tol::kZLevelInsideRepaired : tol::kZLevelInsideMargin;
+  q.margin =
+      higher.stats.repaired_links > 0 ? tol::kZLevelInsideRepaired : tol::kZLevelInsideMargin;
   // Inscribed polygons: the points lie on the segments, a chord of an arc inside its region.
   std::vector<Vec2> pts;
   double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
@@ -204,8 +207,8 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
     const int j1 = std::min(q.ny - 1, int(std::floor((y1 - q.y0) / q.cell)));
     for (int j = j0; j <= j1; ++j) rows[j].push_back(e);
   }
-  static constexpr double kOffsets[][2] = {{0.5, 0.5},   {0.3, 0.6},   {0.7, 0.4}, {0.4, 0.3},
-                                           {0.6, 0.7},   {0.2, 0.8},   {0.8, 0.2}, {0.15, 0.35},
+  static constexpr double kOffsets[][2] = {{0.5, 0.5},   {0.3, 0.6},   {0.7, 0.4},  {0.4, 0.3},
+                                           {0.6, 0.7},   {0.2, 0.8},   {0.8, 0.2},  {0.15, 0.35},
                                            {0.85, 0.65}, {0.35, 0.85}, {0.65, 0.15}};
   std::vector<std::uint32_t> blocked;
   std::vector<double> xs;
@@ -317,7 +320,8 @@ void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t>
     if (id < nf) {
       for (const Vec3& v : el.facet_tri[id]) p[n++] = Vec2(v.x(), v.y());
     } else if (id < nf + el.edge_count()) {
-      for (std::uint32_t v : el.edge_vertices[id - nf]) p[n++] = Vec2(el.points[v].x(), el.points[v].y());
+      for (std::uint32_t v : el.edge_vertices[id - nf])
+        p[n++] = Vec2(el.points[v].x(), el.points[v].y());
       r = el.radius;
     } else {
       out.push_back(id);  // vertices: the kernel derives them from edges
