@@ -290,6 +290,19 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   // A region deep inside it (tol::kZLevelInsideDepth) is dropped; its shape is tested through
   // a hull that holds it: the projected offset triangle, the capsule of radius R around the
   // edge's shadow, the disc.
+  // Marks a region wholly above the inside region's level (Region::known_inside).
+  const double zc_inside = inside ? inside->tip_z + lv.R : INFINITY;
+  auto mark_known = [&](Region& g) {
+    double low = INFINITY;
+    if (g.kind == RegionKind::kFacet) {
+      for (const Vec3& v : el.facet_tri[g.index]) low = std::min(low, v.z());
+    } else if (g.kind == RegionKind::kEdge) {
+      low = g.a.z();  // the lower end
+    } else {
+      low = g.vz;
+    }
+    g.known_inside = low >= zc_inside;
+  };
   auto deep_inside = [&](const Region& g) {
     if (!inside) return false;
     const double depth = tol::kZLevelInsideDepth;
@@ -344,16 +357,20 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
     Region g;
     if (build_region(el, id, lv, params.skip_unreachable, g) && grid.any_open(g.box) &&
-        !deep_inside(g))
+        !deep_inside(g)) {
+      mark_known(g);
       regions.push_back(g);
+    }
   }
   for (std::size_t w = 0; w < vbits.size(); ++w)
     for (std::uint64_t m = vbits[w]; m; m &= m - 1) {
       const auto v = std::uint32_t(w * 64 + std::countr_zero(m));
       Region g;
       if (build_region(el, el.vertex_id(v), lv, params.skip_unreachable, g) &&
-          grid.any_open(g.box) && !deep_inside(g))
+          grid.any_open(g.box) && !deep_inside(g)) {
+        mark_known(g);
         regions.push_back(g);
+      }
     }
   st.regions = regions.size();
 

@@ -183,6 +183,12 @@ struct ZLevelInside {
   // links (the polygon may then leave U by up to their gaps there).
   double margin = 0;
   std::uint32_t blocked_cells = 0;
+  // The level's tip z, and per polygon edge 1 when it lies on the contour exactly (a line
+  // segment's, between end points shared to 1e-12 mm): the regions of elements wholly above
+  // that level (inside the region) cannot hold a point within 1e-10 mm of such an edge, so the
+  // kernel does not try them there.
+  double tip_z = 0;
+  std::vector<std::uint8_t> exact;
   bool empty() const { return nx == 0; }
 };
 

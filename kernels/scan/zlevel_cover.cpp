@@ -98,10 +98,15 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
     }
     if (!grid.any_open(b)) return true;
     if (inside && inside_contains(*inside, h, nh, 0, inside->margin)) return true;
+    // An end on the known region's boundary (within 1e-10 mm of an exact edge, the contour to
+    // ~1e-11) lies less than m deep in it, so no region inside it holds the hull.
+    const bool on_known = inside && (on_exact_edge(*inside, h[0], 1e-10) ||
+                                     on_exact_edge(*inside, h[1], 1e-10));
     auto in_region = [&](std::uint32_t gi) {
       const Box4f& gb = rbox[gi];
       if (gi == c.region || b[0] < gb[0] || b[1] < gb[1] || b[2] > gb[2] || b[3] > gb[3])
         return false;
+      if (on_known && regions[gi].known_inside) return false;
       const Region& g = regions[gi];
       for (int q = 0; q < nh; ++q)
         if (!(region_phi(g, h[q], lv) < -m)) return false;

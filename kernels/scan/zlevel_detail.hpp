@@ -53,6 +53,7 @@ struct Region {
   double dd = 0, dxy2 = 0;                  // edge: |d|^2, |d_xy|^2
   Vec2 c = Vec2::Zero();                    // vertex: centre
   double r = 0, vz = 0;                     // vertex: disc radius, height
+  bool known_inside = false;  // wholly above the known inside region's level (inside it)
 };
 
 // Builds the region of element `id`; false when it is empty, has no area, or is not needed
@@ -258,6 +259,9 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
 // quadrilateral) lies `margin` deep inside q's polygon: its first point is inside and no
 // polygon edge (nor blocked cell) comes within r + margin of the hull.
 bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, double margin);
+
+// Whether x lies within tol of a polygon edge that is on the contour exactly (q.exact).
+bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol);
 
 // An upper bound of the depth inside q's polygon (the distance to its boundary; none outside)
 // of the points of conv(hull[0, n)): the smallest over the polygon edges near it of the

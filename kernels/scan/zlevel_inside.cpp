@@ -163,21 +163,33 @@ double clearance(const ZLevelInside& q, const Vec2* poly, int n, double r, doubl
 ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
   ZLevelInside q;
   if (higher.contours.empty() || higher.stats.open_chains > 0) return q;
+  q.tip_z = higher.tip_z;
   q.margin =
       higher.stats.repaired_links > 0 ? tol::kZLevelInsideRepaired : tol::kZLevelInsideMargin;
   // Inscribed polygons: the points lie on the segments, a chord of an arc inside its region.
   std::vector<Vec2> pts;
   double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+  std::vector<std::uint8_t> line;  // per point: it starts a line segment ending at the next
   for (const ZContour& con : higher.contours) {
     pts.clear();
-    for (const ContourSeg& s : con.segs) discretise(s, 0.25 * tol::kZLevelInsideDepth, pts);
+    line.clear();
+    for (std::size_t i = 0; i < con.segs.size(); ++i) {
+      const ContourSeg& s = con.segs[i];
+      const std::size_t before = pts.size();
+      discretise(s, 0.25 * tol::kZLevelInsideDepth, pts);
+      line.resize(pts.size(), 0);
+      const Vec2& next = con.segs[(i + 1) % con.segs.size()].a;
+      line[before] = s.kind == ContourSegKind::kLine && (s.b - next).norm() <= 1e-12;
+    }
     for (std::size_t k = 0; k < pts.size(); ++k) {
       const Vec2 &a = pts[k], &b = pts[(k + 1) % pts.size()];
       ext[0] = std::min(ext[0], a.x());
       ext[1] = std::min(ext[1], a.y());
       ext[2] = std::max(ext[2], a.x());
       ext[3] = std::max(ext[3], a.y());
-      if (a != b) q.edges.push_back({a, b});
+      if (a == b) continue;
+      q.edges.push_back({a, b});
+      q.exact.push_back(line[k]);
     }
   }
   if (q.edges.size() < 3 || !(ext[0] <= ext[2])) return ZLevelInside{};
@@ -336,6 +348,18 @@ void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t>
 }
 
 namespace zlevel_detail {
+
+bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol) {
+  if (q.empty()) return false;
+  const int c = cell_of(q, x);
+  if (c < 0) return false;
+  for (std::uint32_t k = q.start[c]; k < q.start[c + 1]; ++k) {
+    const std::uint32_t e = q.ids[k];
+    if (e < q.polygon_edges && q.exact[e] && point_seg(x, q.edges[e][0], q.edges[e][1]) <= tol)
+      return true;
+  }
+  return false;
+}
 
 bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, double margin) {
   if (q.empty()) return false;
