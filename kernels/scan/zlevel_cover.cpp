@@ -97,11 +97,11 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
       b[3] = std::max(b[3], h[q].y());
     }
     if (!grid.any_open(b)) return true;
-    if (inside && inside_contains(*inside, h, nh, 0, inside->margin)) return true;
     // An end on the known region's boundary (within 1e-10 mm of an exact edge, the contour to
-    // ~1e-11) lies less than m deep in it, so no region inside it holds the hull.
+    // ~1e-11) lies less than m deep in it, so neither it nor a region inside it holds the hull.
     const bool on_known = inside && (on_exact_edge(*inside, h[0], 1e-10) ||
                                      on_exact_edge(*inside, h[1], 1e-10));
+    if (inside && !on_known && inside_contains(*inside, h, nh, 0, inside->margin)) return true;
     auto in_region = [&](std::uint32_t gi) {
       const Box4f& gb = rbox[gi];
       if (gi == c.region || b[0] < gb[0] || b[1] < gb[1] || b[2] > gb[2] || b[3] > gb[3])
