@@ -135,6 +135,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     const std::size_t n = prefix(*cand, z);
     ZLevelParams kp = kernel;
     kp.inside = &inside;
+    kp.candidates_filtered = cand == &filtered;
     const ZLevelResult r =
         zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), z, kp);
     if (i + 1 == chunk_end) next_inside = zlevel_inside(r, 0.5 * el.radius);

@@ -304,7 +304,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     g.known_inside = low >= zc_inside;
   };
   auto deep_inside = [&](const Region& g) {
-    if (!inside) return false;
+    if (!inside || (params.candidates_filtered && g.kind != RegionKind::kVertex)) return false;
     const double depth = tol::kZLevelInsideDepth;
     bool deep = false;
     if (g.kind == RegionKind::kFacet) {

@@ -214,6 +214,9 @@ struct ZLevelParams {
   // Optional: zlevel_inside(r) of the result r of a higher level (the result is the same, up
   // to rounding where curves are split).
   const ZLevelInside* inside = nullptr;
+  // The facet and edge candidates were kept by zlevel_filter_deep against `inside` (the same
+  // test the kernel would make again): only vertices are tested.
+  bool candidates_filtered = false;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any
