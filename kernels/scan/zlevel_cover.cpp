@@ -89,13 +89,8 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
   auto certified = [&](double s0, double s1, const Vec2& p0, const Vec2& p1) {
     Vec2 h[3];
     const int nh = hull(s0, s1, p0, p1, h);
-    double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-    for (int q = 0; q < nh; ++q) {
-      b[0] = std::min(b[0], h[q].x());
-      b[1] = std::min(b[1], h[q].y());
-      b[2] = std::max(b[2], h[q].x());
-      b[3] = std::max(b[3], h[q].y());
-    }
+    double b[4];
+    points_box(h, nh, b);
     if (!grid.any_open(b)) return true;
     // An end on the known region's boundary (within 1e-10 mm of an exact edge, the contour to
     // ~1e-11) lies less than m deep in it, so neither it nor a region inside it holds the hull.

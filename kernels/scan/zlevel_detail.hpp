@@ -189,6 +189,18 @@ inline double depth_cutoff(double d, double R, double above) {
   return above + d * (1 + 1e-9) + d * d / (2 * R) + 1e-9;
 }
 
+// Box (x0, y0, x1, y1) of the points p[0, n).
+inline void points_box(const Vec2* p, int n, double* b) {
+  b[0] = b[1] = INFINITY;
+  b[2] = b[3] = -INFINITY;
+  for (int k = 0; k < n; ++k) {
+    b[0] = std::min(b[0], p[k].x());
+    b[1] = std::min(b[1], p[k].y());
+    b[2] = std::max(b[2], p[k].x());
+    b[3] = std::max(b[3], p[k].y());
+  }
+}
+
 using Box4f = std::array<float, 4>;
 
 // Box rounded outwards to floats (compact copies for scans over many regions).

@@ -128,13 +128,8 @@ bool parity_inside(const ZLevelInside& q, const Vec2& x) {
 // is nearer; polygon_only skips the sides of blocked cells.
 double clearance(const ZLevelInside& q, const Vec2* poly, int n, double r, double limit,
                  bool polygon_only) {
-  double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-  for (int k = 0; k < n; ++k) {
-    b[0] = std::min(b[0], poly[k].x());
-    b[1] = std::min(b[1], poly[k].y());
-    b[2] = std::max(b[2], poly[k].x());
-    b[3] = std::max(b[3], poly[k].y());
-  }
+  double b[4];
+  points_box(poly, n, b);
   const double g = r + limit;
   int i0, j0, i1, j1;
   if (!cell_range(q, b[0] - g, b[1] - g, b[2] + g, b[3] + g, i0, j0, i1, j1)) return limit;
@@ -373,13 +368,8 @@ bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, d
 double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double limit) {
   if (q.empty()) return 0;
   // The distance to one edge is convex: over the hull it is largest at a corner.
-  double b[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
-  for (int k = 0; k < n; ++k) {
-    b[0] = std::min(b[0], hull[k].x());
-    b[1] = std::min(b[1], hull[k].y());
-    b[2] = std::max(b[2], hull[k].x());
-    b[3] = std::max(b[3], hull[k].y());
-  }
+  double b[4];
+  points_box(hull, n, b);
   int i0, j0, i1, j1;
   if (!cell_range(q, b[0] - limit, b[1] - limit, b[2] + limit, b[3] + limit, i0, j0, i1, j1))
     return 0;  // no polygon edge near: outside (the grid holds the polygon with a cell's margin)

@@ -6,13 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <random>
 
-#include "batch/io/mesh_reader.hpp"
-#include "kernels/mesh/mesh_transform.hpp"
 #include "kernels/scan/zlevel.hpp"
 #include "kernels/scan/zlevel_detail.hpp"
+#include "tests/engine/mesh_test_support.hpp"
 #include "tests/kernels/scan/zlevel_test_support.hpp"
 
 namespace ncpath {
@@ -264,15 +262,8 @@ TEST(ZLevelInside, TerrainAndHemisphereSameContours) {
 // CGAL's anchor_dense (a CAD part with walls in many bands, float-free OFF) fit to 200 mm as
 // the jobs do, ball R 2.5: the levels of CadPartWallsCloseEveryLoop and others.
 TEST(ZLevelInside, CadPartSameContours) {
-  const auto path =
-      std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes/anchor_dense.off";
-  ASSERT_TRUE(std::filesystem::exists(path))
-      << path << " is missing: run datasets/fetch-cgal-meshes.sh";
-  io::MeshReadResult in = io::read_mesh(path);
-  MeshTransform fit;
-  fit.fit_xy_mm = 200;
-  ASSERT_TRUE(apply_transform(fit, in.mesh).error.empty());
-  const OffsetElements el = build_offset_elements(in.mesh, 2.5, Coplanar::kVertical);
+  const TriangleMesh mesh = test_meshes::load("anchor_dense");
+  const OffsetElements el = build_offset_elements(mesh, 2.5, Coplanar::kVertical);
   std::uint64_t dropped = 0, left_out = 0;
   check_pruning(el, {-40.0, -19.3414, 0.6586, 30.6586, -62.38465574932556}, 1.0, nullptr, dropped,
                 left_out);

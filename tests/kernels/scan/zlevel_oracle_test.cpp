@@ -8,12 +8,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <random>
 
-#include "batch/io/mesh_reader.hpp"
-#include "kernels/mesh/mesh_transform.hpp"
 #include "kernels/scan/zlevel.hpp"
+#include "tests/engine/mesh_test_support.hpp"
 #include "tests/kernels/scan/zlevel_test_support.hpp"
 
 namespace ncpath {
@@ -89,16 +87,9 @@ TEST(ZLevel, DegenerateGridTerrainMatchesDropCutter) {
 //    shadow runs on; a vertex circle crossing it 2e-5 mm further on left a piece within 1e-11
 //    of the wall's line, kept as shared (-62.38465574932556, a vertex's height).
 TEST(ZLevel, CadPartWallsCloseEveryLoop) {
-  const auto path =
-      std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes/anchor_dense.off";
-  ASSERT_TRUE(std::filesystem::exists(path))
-      << path << " is missing: run datasets/fetch-cgal-meshes.sh";
-  io::MeshReadResult in = io::read_mesh(path);
-  MeshTransform fit;
-  fit.fit_xy_mm = 200;
-  ASSERT_TRUE(apply_transform(fit, in.mesh).error.empty());
-  const OffsetElements el = build_offset_elements(in.mesh, 2.5, Coplanar::kKeep);
-  Oracle o(in.mesh, el);
+  const TriangleMesh mesh = test_meshes::load("anchor_dense");
+  const OffsetElements el = build_offset_elements(mesh, 2.5, Coplanar::kKeep);
+  Oracle o(mesh, el);
   std::mt19937_64 rng(15);
   for (double z : {-40.0, 30.6586, 10.6586, 0.6586, -19.3414, -30.6586, -62.38465574932556}) {
     check_result(o, run(el, z), rng, -104, -67, 104, 67, 200);
