@@ -10,12 +10,12 @@
 
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/curves/nurbs_detail.hpp"
+#include "kernels/geom/segment2.hpp"
 #include "kernels/geom/tolerance.hpp"
 
 namespace ncpath {
 namespace {
 
-using nurbs_detail::point_segment_distance;
 using nurbs_detail::unit_tangent;
 
 constexpr int kInflectionProbes = 16;  // samples of cross(C', C'') per knot span

@@ -74,7 +74,4 @@ std::vector<PolyPoint> polyline_with_params(const Nurbs2& c, double chordal_tol)
 std::vector<Nurbs2> trim_offset_loops(const Nurbs2& original, const Nurbs2& offset, double d,
                                       double tol);
 
-// Distance from p to the segment [a, b].
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b);
-
 }  // namespace ncpath::nurbs_detail

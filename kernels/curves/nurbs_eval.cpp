@@ -108,14 +108,6 @@ bool is_closed(const Nurbs2& c) {
   return (c.ctrl.front() - c.ctrl.back()).norm() <= tol::kNurbsZeroLength * curve_size(c);
 }
 
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  double s = l2 > 0 ? (p - a).dot(ab) / l2 : 0.0;
-  s = std::clamp(s, 0.0, 1.0);
-  return (p - (a + s * ab)).norm();
-}
-
 }  // namespace nurbs_detail
 
 namespace {

@@ -5,6 +5,7 @@
 
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/curves/nurbs_detail.hpp"
+#include "kernels/geom/segment2.hpp"
 #include "kernels/geom/tolerance.hpp"
 
 namespace ncpath {

@@ -88,31 +88,15 @@ void mark_interior(const Region& g, const Level& lv, Grid& grid) {
 
 template <class BoxOf>
 void fill_lists(const Grid& grid, std::size_t n, BoxOf box_of, CellLists& out) {
-  out.start.assign(std::size_t(grid.nx) * grid.ny + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    for (std::size_t k = 0; k < n; ++k) {
-      const double* b = box_of(k);
-      if (!(b[0] <= b[2])) continue;
-      int i0, j0, i1, j1;
-      grid.range(b, i0, j0, i1, j1);
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
-          const std::size_t c = std::size_t(j) * grid.nx + i;
-          if (grid.interior[c]) continue;
-          if (pass == 0)
-            ++out.start[c + 1];
-          else
-            out.ids[out.start[c]++] = std::uint32_t(k);
-        }
-    }
-    if (pass == 0) {
-      for (std::size_t c = 1; c < out.start.size(); ++c) out.start[c] += out.start[c - 1];
-      out.ids.resize(out.start.back());
-    } else {
-      for (std::size_t c = out.start.size() - 1; c > 0; --c) out.start[c] = out.start[c - 1];
-      out.start[0] = 0;
-    }
-  }
+  cell_lists(
+      grid.nx, grid.ny, n,
+      [&](std::size_t k, int& i0, int& j0, int& i1, int& j1) {
+        const double* b = box_of(k);
+        if (!(b[0] <= b[2])) return false;
+        grid.range(b, i0, j0, i1, j1);
+        return true;
+      },
+      [&](std::size_t c) { return !grid.interior[c]; }, out.start, out.ids);
 }
 
 // Each open cell's regions, deepest at the cell's centre first (ties by index), with that

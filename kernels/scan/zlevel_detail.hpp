@@ -173,6 +173,38 @@ struct Grid {
   }
 };
 
+// Compressed lists of items per cell of an nx x ny grid (count, scan, fill): item k goes to
+// the cells (i, j) of the range range(k, i0, j0, i1, j1) sets (false: none) for which keep(cell)
+// holds. start has nx ny + 1 entries; ids[start[c], start[c + 1]) are cell c's items.
+template <class Range, class Keep>
+void cell_lists(int nx, int ny, std::size_t n, Range&& range, Keep&& keep,
+                std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& ids) {
+  const std::size_t cells = std::size_t(nx) * ny;
+  start.assign(cells + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    for (std::size_t k = 0; k < n; ++k) {
+      int i0, j0, i1, j1;
+      if (!range(k, i0, j0, i1, j1)) continue;
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const std::size_t c = std::size_t(j) * nx + i;
+          if (!keep(c)) continue;
+          if (pass == 0)
+            ++start[c + 1];
+          else
+            ids[start[c]++] = std::uint32_t(k);
+        }
+    }
+    if (pass == 0) {
+      for (std::size_t c = 1; c <= cells; ++c) start[c] += start[c - 1];
+      ids.resize(start.back());
+    } else {
+      for (std::size_t c = cells; c > 0; --c) start[c] = start[c - 1];
+      start[0] = 0;
+    }
+  }
+}
+
 // Compressed lists of ids per open cell (count, scan, fill).
 struct CellLists {
   std::vector<std::uint32_t> start, ids;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/geom/segment2.hpp"
 #include "kernels/geom/tolerance.hpp"
 #include "kernels/scan/zlevel_detail.hpp"
 
@@ -17,13 +18,6 @@ namespace {
 // rays and segments from it never pass through an edge within rounding.
 constexpr double kRefClearance = 1e-7;
 
-double point_seg(const Vec2& x, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double dd = d.squaredNorm();
-  const double t = dd > 0 ? std::clamp((x - a).dot(d) / dd, 0.0, 1.0) : 0.0;
-  return (x - (a + t * d)).norm();
-}
-
 double orient(const Vec2& a, const Vec2& b, const Vec2& c) { return cross2(b - a, c - a); }
 
 double seg_seg(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
@@ -31,7 +25,8 @@ double seg_seg(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
                o4 = orient(c, d, b);
   if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0)))
     return 0;
-  return std::min({point_seg(a, c, d), point_seg(b, c, d), point_seg(c, a, b), point_seg(d, a, b)});
+  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d),
+                   point_segment_distance(c, a, b), point_segment_distance(d, a, b)});
 }
 
 // Whether x lies in the convex polygon poly[0, n) (either orientation; on its boundary too).
@@ -47,7 +42,7 @@ bool in_convex(const Vec2& x, const Vec2* poly, int n) {
 
 // Distance from segment ab to the hull of poly[0, n) (n <= 4, the points in hull order).
 double seg_hull(const Vec2& a, const Vec2& b, const Vec2* poly, int n) {
-  if (n == 1) return point_seg(poly[0], a, b);
+  if (n == 1) return point_segment_distance(poly[0], a, b);
   if (n == 2) return seg_seg(a, b, poly[0], poly[1]);
   if (in_convex(a, poly, n) || in_convex(b, poly, n)) return 0;
   double d = INFINITY;
@@ -75,32 +70,14 @@ bool cell_range(const ZLevelInside& q, double x0, double y0, double x1, double y
 }
 
 void fill_cells(ZLevelInside& q) {
-  const std::size_t cells = std::size_t(q.nx) * q.ny;
-  q.start.assign(cells + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    for (std::uint32_t e = 0; e < q.edges.size(); ++e) {
-      const Vec2 &a = q.edges[e][0], &b = q.edges[e][1];
-      int i0, j0, i1, j1;
-      if (!cell_range(q, std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
-                      std::max(a.y(), b.y()), i0, j0, i1, j1))
-        continue;
-      for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) {
-          const std::size_t c = std::size_t(j) * q.nx + i;
-          if (pass == 0)
-            ++q.start[c + 1];
-          else
-            q.ids[q.start[c]++] = e;
-        }
-    }
-    if (pass == 0) {
-      for (std::size_t c = 1; c <= cells; ++c) q.start[c] += q.start[c - 1];
-      q.ids.resize(q.start.back());
-    } else {
-      for (std::size_t c = cells; c > 0; --c) q.start[c] = q.start[c - 1];
-      q.start[0] = 0;
-    }
-  }
+  cell_lists(
+      q.nx, q.ny, q.edges.size(),
+      [&](std::size_t e, int& i0, int& j0, int& i1, int& j1) {
+        const Vec2 &a = q.edges[e][0], &b = q.edges[e][1];
+        return cell_range(q, std::min(a.x(), b.x()), std::min(a.y(), b.y()), std::max(a.x(), b.x()),
+                          std::max(a.y(), b.y()), i0, j0, i1, j1);
+      },
+      [](std::size_t) { return true; }, q.start, q.ids);
 }
 
 // Parity of x from the reference point of its cell: the crossings of the segment between
@@ -245,7 +222,8 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
         const Vec2 r(q.x0 + (i + kOffsets[o][0]) * q.cell, q.y0 + (j + kOffsets[o][1]) * q.cell);
         bool clear = true;
         for (std::uint32_t k = q.start[c]; k < q.start[c + 1] && clear; ++k)
-          clear = point_seg(r, q.edges[q.ids[k]][0], q.edges[q.ids[k]][1]) >= kRefClearance;
+          clear = point_segment_distance(r, q.edges[q.ids[k]][0], q.edges[q.ids[k]][1]) >=
+                  kRefClearance;
         if (!clear) continue;
         const auto right =
             o == 0 ? std::size_t(xs.end() - std::upper_bound(xs.begin(), xs.end(), r.x()))
@@ -350,7 +328,8 @@ bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol) {
   if (c < 0) return false;
   for (std::uint32_t k = q.start[c]; k < q.start[c + 1]; ++k) {
     const std::uint32_t e = q.ids[k];
-    if (e < q.polygon_edges && q.exact[e] && point_seg(x, q.edges[e][0], q.edges[e][1]) <= tol)
+    if (e < q.polygon_edges && q.exact[e] &&
+        point_segment_distance(x, q.edges[e][0], q.edges[e][1]) <= tol)
       return true;
   }
   return false;
@@ -382,7 +361,8 @@ double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double
         if (e >= q.polygon_edges) continue;
         const Vec2 &a = q.edges[e][0], &b = q.edges[e][1];
         double far = 0;
-        for (int v = 0; v < n && far < best; ++v) far = std::max(far, point_seg(hull[v], a, b));
+        for (int v = 0; v < n && far < best; ++v)
+          far = std::max(far, point_segment_distance(hull[v], a, b));
         best = std::min(best, far);
         if (nearest > kRefClearance) nearest = std::min(nearest, seg_hull(a, b, hull, n));
       }
