@@ -312,11 +312,7 @@ void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t>
       out.push_back(id);  // vertices: the kernel derives them from edges
       continue;
     }
-    double reach = 0;
-    for (int k = 1; k < n; ++k) reach = std::max(reach, (p[k] - p[0]).norm());
-    const int quick = far_answer(q, p[0], reach + r, depth);
-    if (quick == 1 || (quick == -1 && zlevel_detail::inside_contains(q, p, n, r, depth))) continue;
-    out.push_back(id);
+    if (!zlevel_detail::inside_contains(q, p, n, r, depth)) out.push_back(id);
   }
 }
 
