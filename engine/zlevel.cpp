@@ -59,6 +59,7 @@ void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
 struct LevelOut {
   ZLevelChunk chunk;
   std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
+  std::uint64_t unchanged = 0;
   std::uint64_t kinds[3] = {0, 0, 0};
 };
 
@@ -142,6 +143,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
     out.repaired_links = r.stats.repaired_links;
+    out.unchanged = r.stats.unchanged;
     ZLevelChunk& ch = out.chunk;
     std::vector<Vec2> pts;
     for (std::size_t c = 0; c < r.contours.size(); ++c) {
@@ -256,6 +258,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       st.candidates += o.candidates;
       st.open_chains += o.open_chains;
       st.repaired_links += o.repaired_links;
+      st.unchanged_levels += o.unchanged;
       st.points += o.points;
     }
   };

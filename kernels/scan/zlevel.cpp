@@ -158,6 +158,43 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el) {
   return out;
 }
 
+// Whether U at level lv is the known inside region's U (ZLevelInside): every region of the
+// candidates `cand` (facets, edges and their end vertices, vertices) that is not empty lies
+// wholly above the region's level (strictly; it is then the same region there, inside U) or
+// inside its polygon (by its margin; the polygon is inscribed in the region). U only grows
+// going down, so it holds the region's U too. Checked in id order, stopping at the first
+// region that is neither.
+static bool same_as_known(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
+                          const ZLevelInside& q, const Level& lv, bool reach) {
+  const double zc_known = q.tip_z + lv.R;
+  const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
+  // The region of element id, of lowest point `low`, is above, empty or inside.
+  auto known = [&](std::uint32_t id, double low) {
+    if (low > zc_known) return true;
+    Region g;
+    return !build_region(el, id, lv, reach, g) || region_in_known(el, q, g, lv, q.margin);
+  };
+  auto vertex_known = [&](std::uint32_t point) {
+    const auto it = std::lower_bound(el.vertex_source.begin(), el.vertex_source.end(), point);
+    if (it == el.vertex_source.end() || *it != point) return true;  // not a vertex element
+    return known(el.vertex_id(std::size_t(it - el.vertex_source.begin())), el.points[point].z());
+  };
+  for (const std::uint32_t id : cand) {
+    if (id < nf) {
+      double low = INFINITY;
+      for (const Vec3& v : el.facet_tri[id]) low = std::min(low, v.z());
+      if (!known(id, low)) return false;
+    } else if (id < nf + ne) {
+      const auto& ev = el.edge_vertices[id - nf];
+      const double low = std::min(el.points[ev[0]].z(), el.points[ev[1]].z());
+      if (!known(id, low) || !vertex_known(ev[0]) || !vertex_known(ev[1])) return false;
+    } else if (!vertex_known(el.vertex_source[id - nf - ne])) {
+      return false;
+    }
+  }
+  return true;
+}
+
 ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
                              double tip_z, const ZLevelParams& params) {
   ZLevelResult result;
@@ -213,6 +250,15 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
   });
   if (!(ext[0] <= ext[2])) return result;
+  const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
+  if (inside && !inside->contours.empty() &&
+      same_as_known(el, cand, *inside, lv, params.skip_unreachable)) {
+    result.contours = inside->contours;
+    for (ZContour& c : result.contours)
+      for (ZJunction& j : c.junctions) j.position.z() = tip_z;
+    st.unchanged = 1;
+    return result;
+  }
   Grid grid;
   grid.cell = params.cell > 0 ? params.cell : 0.5 * lv.R;
   const double wx = ext[2] - ext[0], wy = ext[3] - ext[1];
@@ -258,7 +304,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
   }
   // Cells inside the known inside region (a higher level's contours) are interior too.
-  const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
   if (inside)
     for (int j = 0; j < grid.ny; ++j)
       for (int i = 0; i < grid.nx; ++i) {
@@ -289,19 +334,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   };
   auto deep_inside = [&](const Region& g) {
     if (!inside || (params.candidates_filtered && g.kind != RegionKind::kVertex)) return false;
-    const double depth = tol::kZLevelInsideDepth;
-    bool deep = false;
-    if (g.kind == RegionKind::kFacet) {
-      const auto& t = el.facet_tri[g.index];
-      const Vec2 p[3] = {Vec2(t[0].x(), t[0].y()), Vec2(t[1].x(), t[1].y()),
-                         Vec2(t[2].x(), t[2].y())};
-      deep = inside_contains(*inside, p, 3, 0, depth);
-    } else if (g.kind == RegionKind::kEdge) {
-      const Vec2 p[2] = {Vec2(g.a.x(), g.a.y()), Vec2(g.a.x() + g.d.x(), g.a.y() + g.d.y())};
-      deep = inside_contains(*inside, p, 2, lv.R, depth);
-    } else {
-      deep = inside_contains(*inside, &g.c, 1, g.r, depth);
-    }
+    const bool deep = region_in_known(el, *inside, g, lv, tol::kZLevelInsideDepth);
     st.inside_regions += deep;
     return deep;
   };

@@ -133,6 +133,7 @@ struct ZLevelStats {
   std::uint64_t convex_junctions = 0;  // convex corners (only at floors exactly at the level)
   std::uint64_t inside_regions = 0;    // regions dropped deep inside ZLevelParams::inside
   std::uint64_t inside_cells = 0;      // interior cells found inside ZLevelParams::inside
+  std::uint64_t unchanged = 0;  // 1: U is the known inside region's (its contours copied)
 };
 
 struct ZLevelResult {
@@ -170,6 +171,11 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
 // inside (zlevel_filter_deep, run against the region of a higher level: a region only grows
 // going down, and the polygons lie within a quarter of the depth of the contours).
 // The contours are the same as without it (up to rounding where they are split).
+// When every candidate region that is not empty lies wholly above the region's level (the
+// same region there, inside it) or deep inside it, U is the region's U: below an overhang or
+// the top of a wall. The kernel then copies the region's contours (`contours`) with the
+// junctions moved to its level (ZLevelStats::unchanged); their elements all lie above both
+// levels, so their segments are shadows at both and their contact vectors horizontal.
 struct ZLevelInside {
   double x0 = 0, y0 = 0, cell = 1;
   int nx = 0, ny = 0;
@@ -189,6 +195,8 @@ struct ZLevelInside {
   // kernel does not try them there.
   double tip_z = 0;
   std::vector<std::uint8_t> exact;
+  // The level's contours, when they have no repaired links (else empty: not copied).
+  std::vector<ZContour> contours;
   bool empty() const { return nx == 0; }
 };
 

@@ -166,6 +166,7 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
   }
   if (q.edges.size() < 3 || !(ext[0] <= ext[2])) return ZLevelInside{};
   q.polygon_edges = std::uint32_t(q.edges.size());
+  if (higher.stats.repaired_links == 0) q.contours = higher.contours;
   q.cell = cell > 0 ? cell : 1.0;
   const double wx = ext[2] - ext[0], wy = ext[3] - ext[1];
   const double max_cells = 4e6;
@@ -317,6 +318,21 @@ void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t>
 }
 
 namespace zlevel_detail {
+
+bool region_in_known(const OffsetElements& el, const ZLevelInside& q, const Region& g,
+                     const Level& lv, double depth) {
+  if (g.kind == RegionKind::kFacet) {
+    const auto& t = el.facet_tri[g.index];
+    const Vec2 p[3] = {Vec2(t[0].x(), t[0].y()), Vec2(t[1].x(), t[1].y()),
+                       Vec2(t[2].x(), t[2].y())};
+    return inside_contains(q, p, 3, 0, depth);
+  }
+  if (g.kind == RegionKind::kEdge) {
+    const Vec2 p[2] = {Vec2(g.a.x(), g.a.y()), Vec2(g.a.x() + g.d.x(), g.a.y() + g.d.y())};
+    return inside_contains(q, p, 2, lv.R, depth);
+  }
+  return inside_contains(q, &g.c, 1, g.r, depth);
+}
 
 bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol) {
   if (q.empty()) return false;

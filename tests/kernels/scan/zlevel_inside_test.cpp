@@ -68,6 +68,8 @@ void expect_same_contours(const ZLevelResult& a, const ZLevelResult& b, const ch
       EXPECT_EQ(p.junctions[k].e1, q.junctions[k].e1) << what;
       EXPECT_EQ(p.junctions[k].e2, q.junctions[k].e2) << what;
       EXPECT_LT((p.junctions[k].position - q.junctions[k].position).norm(), 1e-9) << what;
+      EXPECT_LT((p.junctions[k].b1 - q.junctions[k].b1).norm(), 1e-9) << what;
+      EXPECT_LT((p.junctions[k].b2 - q.junctions[k].b2).norm(), 1e-9) << what;
     }
   }
 }
@@ -204,7 +206,8 @@ TEST(ZLevelInside, QueriesAgreeWithBruteForce) {
 // a still higher one, as the engine does) equal those computed from all elements; the
 // regions dropped are many (the test can fail: the tower's wall stacks).
 void check_pruning(const OffsetElements& el, const std::vector<double>& levels, double dz,
-                   const Oracle* oracle, std::uint64_t& dropped, std::uint64_t& left_out) {
+                   const Oracle* oracle, std::uint64_t& dropped, std::uint64_t& left_out,
+                   std::uint64_t* unchanged = nullptr) {
   std::mt19937_64 rng(5);
   const std::vector<std::uint32_t> all = all_ids(el);
   for (double z : levels) {
@@ -218,6 +221,7 @@ void check_pruning(const OffsetElements& el, const std::vector<double>& levels, 
     const ZLevelResult with = zlevel_contours(el, all, z, kp);
     expect_same_contours(plain, with, "inside");
     dropped += with.stats.inside_regions;
+    if (unchanged) *unchanged += with.stats.unchanged;
     EXPECT_EQ(with.stats.open_chains, 0u);
     // Candidates filtered against the region of a level above `higher`.
     const ZLevelInside q2 = zlevel_inside(run(el, z + 2.5 * dz), 0.5 * el.radius);
@@ -264,11 +268,70 @@ TEST(ZLevelInside, TerrainAndHemisphereSameContours) {
 TEST(ZLevelInside, CadPartSameContours) {
   const TriangleMesh mesh = test_meshes::load("anchor_dense");
   const OffsetElements el = build_offset_elements(mesh, 2.5, Coplanar::kVertical);
-  std::uint64_t dropped = 0, left_out = 0;
+  std::uint64_t dropped = 0, left_out = 0, unchanged = 0;
   check_pruning(el, {-40.0, -19.3414, 0.6586, 30.6586, -62.38465574932556}, 1.0, nullptr, dropped,
-                left_out);
+                left_out, &unchanged);
   EXPECT_GT(dropped, 1000u);
   EXPECT_GT(left_out, 1000u);
+  // Its lower part lies under an overhang: there the contours are the higher level's, copied.
+  EXPECT_GT(unchanged, 0u);
+  EXPECT_LT(unchanged, 5u);
+}
+
+// A closed box [lo, hi], facets facing out.
+void add_box(TriangleMesh& m, const Vec3& lo, const Vec3& hi) {
+  const auto b = std::uint32_t(m.vertices.size());
+  for (int k = 0; k < 8; ++k)
+    m.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
+                            k & 4 ? hi.z() : lo.z());
+  const std::uint32_t quads[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                     {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& q : quads) {
+    m.facets.push_back({b + q[0], b + q[1], b + q[2]});
+    m.facets.push_back({b + q[0], b + q[2], b + q[3]});
+  }
+}
+
+// A mushroom on a plate: cap 60 x 60 (z 30 to 40) on a stem 10 x 10 (z 4 to 31) on a base
+// 80 x 80 (z 0 to 5), ball R 2.5. Between the cap's offset bottom (z 27.5) and the base's top
+// (7.5) every element lies above the ball centre, or its region is empty: U is the cap's
+// square grown by R, the same at every level, and the kernel copies the higher level's
+// contours. Lower, the base's top face reaches the level and U grows: computed in full.
+TEST(ZLevelInside, UnderAnOverhangTheHigherContoursAreCopied) {
+  TriangleMesh mesh;
+  add_box(mesh, Vec3(-30, -30, 30), Vec3(30, 30, 40));
+  add_box(mesh, Vec3(-5, -5, 4), Vec3(5, 5, 31));
+  add_box(mesh, Vec3(-40, -40, 0), Vec3(40, 40, 5));
+  const double R = 2.5;
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kVertical);
+  const std::vector<std::uint32_t> all = all_ids(el);
+  const ZLevelResult higher = run(el, 20);  // tip z; the centre at 22.5
+  ASSERT_EQ(higher.contours.size(), 1u);
+  EXPECT_NEAR(higher.contours[0].area, 60 * 60 + 4 * 60 * R + kPi * R * R, 1e-9);
+  const ZLevelInside q = zlevel_inside(higher, 0.5 * R);
+  ZLevelParams kp;
+  kp.inside = &q;
+  for (double z : {15.0, 5.1}) {  // the centre at 17.5 and 7.6
+    const ZLevelResult copied = zlevel_contours(el, all, z, kp);
+    EXPECT_EQ(copied.stats.unchanged, 1u) << z;
+    EXPECT_EQ(copied.stats.regions, 0u) << z;
+    expect_same_contours(run(el, z), copied, "copied");
+    ASSERT_EQ(copied.contours.size(), 1u);
+    EXPECT_NEAR(copied.contours[0].area, higher.contours[0].area, 1e-9);
+    for (const ZJunction& j : copied.contours[0].junctions) {
+      EXPECT_EQ(j.position.z(), z);
+      EXPECT_EQ(j.b1.z(), 0.0);  // shadows: the contact lies on the vertical below the cap
+    }
+    for (const ContourSeg& s : copied.contours[0].segs) EXPECT_TRUE(s.shadow);
+  }
+  // The centre at 5.5: the base's top face (offset to 7.5) and its edges' capsules (radius
+  // sqrt(R^2 - 0.5^2)) make U.
+  const ZLevelResult grown = zlevel_contours(el, all, 3, kp);
+  EXPECT_EQ(grown.stats.unchanged, 0u);
+  expect_same_contours(run(el, 3), grown, "grown");
+  ASSERT_EQ(grown.contours.size(), 1u);
+  const double r = std::sqrt(R * R - 0.25);
+  EXPECT_NEAR(grown.contours[0].area, 80 * 80 + 4 * 80 * r + kPi * r * r, 1e-9);
 }
 
 TEST(ZLevelInside, OpenChainsGiveNoRegion) {
