@@ -106,6 +106,7 @@ void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& sta
       {"open_chains", i64(st.open_chains), ""},
       {"repaired_links", i64(st.repaired_links), ""},
       {"unchanged_levels", i64(st.unchanged_levels), ""},
+      {"spliced_levels", i64(st.spliced_levels), ""},
       {"cut_points", i64(st.points), ""},
       {"elements_s", st.elements_s, "s"},
   };

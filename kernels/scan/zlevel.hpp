@@ -134,6 +134,9 @@ struct ZLevelStats {
   std::uint64_t inside_regions = 0;    // regions dropped deep inside ZLevelParams::inside
   std::uint64_t inside_cells = 0;      // interior cells found inside ZLevelParams::inside
   std::uint64_t unchanged = 0;  // 1: U is the known inside region's (its contours copied)
+  // 1: U differs from the known inside region's only within x-slabs: computed there and
+  // spliced to its contours (the other counts are the local computation's).
+  std::uint64_t spliced = 0;
 };
 
 struct ZLevelResult {
@@ -172,10 +175,18 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
 // going down, and the polygons lie within a quarter of the depth of the contours).
 // The contours are the same as without it (up to rounding where they are split).
 // When every candidate region that is not empty lies wholly above the region's level (the
-// same region there, inside it) or deep inside it, U is the region's U: below an overhang or
-// the top of a wall. The kernel then copies the region's contours (`contours`) with the
+// same region there, inside it) or inside it, U is the region's U: below an overhang or the
+// top of a wall. The kernel then copies the region's contours (`contours`) with the
 // junctions moved to its level (ZLevelStats::unchanged); their elements all lie above both
-// levels, so their segments are shadows at both and their contact vectors horizontal.
+// levels, so their segments are shadows at both and their contact vectors horizontal. When
+// the other regions lie within x-slabs covering less than 0.4 of the contours' width (with
+// ZLevelParams::unfiltered), U differs from the region's U only there: the kernel computes
+// the contours of the candidates meeting the slabs (with the region restricted to them) and
+// splices them to the region's along vertical cut lines clear of segment ends and arc
+// extremes, where both run along the same element's curve (ZLevelStats::spliced). The
+// result is the same as the full computation's up to rounding where curves are split (at a
+// line's tangent joint with a circle, ~sqrt(rounding)); when the pieces do not meet one to
+// one at the cuts, the level is computed in full.
 struct ZLevelInside {
   double x0 = 0, y0 = 0, cell = 1;
   int nx = 0, ny = 0;
@@ -183,7 +194,8 @@ struct ZLevelInside {
   std::uint32_t polygon_edges = 0;         // edges[0, polygon_edges) count for the parity
   std::vector<std::uint32_t> start, ids;   // CSR: the edges whose box meets each cell
   std::vector<Vec2> ref;                   // per cell: the reference point
-  std::vector<std::uint8_t> ref_state;     // 0 outside, 1 inside, 2 blocked (no reference)
+  // 0 outside, 1 inside, 2 blocked (no reference), 3 outside a part kept (inside_within)
+  std::vector<std::uint8_t> ref_state;
   std::vector<std::uint8_t> far;  // per cell: cells (Chebyshev, capped) to the nearest with an edge
   // mm: tol::kZLevelInsideMargin, or tol::kZLevelInsideRepaired when the contours had repaired
   // links (the polygon may then leave U by up to their gaps there).
@@ -225,6 +237,10 @@ struct ZLevelParams {
   // The facet and edge candidates were kept by zlevel_filter_deep against `inside` (the same
   // test the kernel would make again): only vertices are tested.
   bool candidates_filtered = false;
+  // Optional, with `inside` and `boxes`: all the level's candidates, before they were
+  // filtered. Where U differs from the inside region's only near a few elements, the kernel
+  // computes the contours near them from these and splices them to the region's.
+  std::span<const std::uint32_t> unfiltered;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any

@@ -309,6 +309,10 @@ bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, d
 bool region_in_known(const OffsetElements& el, const ZLevelInside& q, const Region& g,
                      const Level& lv, double depth);
 
+// q within the x-slabs (x0, x1): the grid columns not wholly inside one are blocked (never
+// known inside), with edges between them and the others.
+ZLevelInside inside_within(const ZLevelInside& q, const std::vector<std::array<double, 2>>& slabs);
+
 // Whether x lies within tol of a polygon edge that is on the contour exactly (q.exact).
 bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol);
 
@@ -320,9 +324,34 @@ double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double
 // ---- loops (zlevel_loops.cpp) ----
 
 // Links the pieces into closed loops (ends within `link`), merges runs of one element's
-// curve, classifies junctions and writes the canonical contours into out.
+// curve, classifies junctions and writes the canonical contours into out. Chains that do not
+// close are counted (out.stats.open_chains) and, if open_out is given, written there in
+// their order (junctions between their segments only; no area).
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                  const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
-                 ZLevelResult& out);
+                 ZLevelResult& out, std::vector<ZContour>* open_out = nullptr);
+
+// Signed area enclosed by a loop of segments, mm^2 (exact for the typed segments).
+double contour_area(const std::vector<ContourSeg>& segs);
+// In output order: by the first segment's start (x, then y), then its element.
+void sort_contours(std::vector<ZContour>& contours);
+
+// ---- splicing (zlevel_splice.cpp) ----
+
+// Whether no segment of the contours starts, nor has an arc's extreme x, within `clearance`
+// of a cut line x = cuts[k].
+bool cuts_are_clear(const std::vector<ZContour>& contours, const std::vector<double>& cuts,
+                    double clearance);
+
+// The contours made of the parts of `outer` in the intervals between the (ascending) cut lines
+// where inside[k] is 0 and the parts of `local` where it is 1 (interval k: below cuts[k],
+// above cuts[k - 1]); both must run along the same element's curve across every cut line, and
+// meet there (within tol::kZLevelLink). `local_open`: chains of `local`'s computation that did
+// not close, whose parts kept must lie between cut lines too. The junctions of `outer` are
+// moved to tip_z. False when they do not meet one to one.
+bool splice_contours(const std::vector<ZContour>& outer, const std::vector<ZContour>& local,
+                     const std::vector<ZContour>& local_open, const std::vector<double>& cuts,
+                     const std::vector<std::uint8_t>& inside, double tip_z,
+                     std::vector<ZContour>& out);
 
 }  // namespace ncpath::zlevel_detail

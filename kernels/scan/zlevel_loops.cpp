@@ -104,17 +104,19 @@ const Region& region_of(const std::vector<Region>& regions, std::uint32_t elemen
   return *it;
 }
 
-// Emits one closed loop of kept pieces as a contour.
+// Emits one closed loop of kept pieces as a contour (or an open chain, in its order, into
+// out.open_chain_contours).
 void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                const std::vector<Curve>& curves, const std::vector<KeptPiece>& kept,
-               const std::vector<std::uint32_t>& seq, ZLevelResult& out) {
+               const std::vector<std::uint32_t>& seq, bool closed, ZLevelResult& out,
+               std::vector<ZContour>* open_out) {
   std::vector<RawSeg> raw;
   raw.reserve(seq.size());
   for (std::uint32_t k : seq) raw.push_back(raw_seg(curves[kept[k].curve], kept[k]));
   // Merge runs of one element's curve, cyclically.
   const std::size_t n = raw.size();
   std::size_t first = 0;
-  while (first < n && mergeable(raw[(first + n - 1) % n], raw[first])) ++first;
+  while (closed && first < n && mergeable(raw[(first + n - 1) % n], raw[first])) ++first;
   std::vector<RawSeg> segs;
   if (first == n) first = 0;  // one closed curve (a full circle)
   for (std::size_t i = 0; i < n; ++i) {
@@ -150,13 +152,13 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
                               (a.a.y() < b.a.y() || (a.a.y() == b.a.y() && a.element < b.element))))
       start = i;
   }
-  std::rotate(segs.begin(), segs.begin() + std::ptrdiff_t(start), segs.end());
+  if (closed) std::rotate(segs.begin(), segs.begin() + std::ptrdiff_t(start), segs.end());
   ZContour c;
   const std::size_t m = segs.size();
   for (std::size_t i = 0; i < m; ++i) {
     const RawSeg &prev = segs[(i + m - 1) % m], &cur = segs[i];
     c.segs.push_back(cur.seg);
-    if (prev.seg.element == cur.seg.element) continue;
+    if (prev.seg.element == cur.seg.element || (!closed && i == 0)) continue;
     ZJunction j;
     j.seg = std::uint32_t(i);
     j.position = Vec3(cur.seg.a.x(), cur.seg.a.y(), out.tip_z);
@@ -175,20 +177,12 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
     j.b2 = contact_vector(el, region_of(regions, j.e2), cur.seg.a, lv);
     c.junctions.push_back(j);
   }
-  // Signed area: the polygon of the end points (with the link gaps between segments, up to
-  // tol::kZLevelLink) plus each arc's cap r1 r2 (dt - sin dt) / 2.
-  const Vec2 o = c.segs[0].a;
-  double area = 0;
-  for (std::size_t i = 0; i < m; ++i) {
-    const ContourSeg& s = c.segs[i];
-    area += 0.5 * (cross2(s.a - o, s.b - o) + cross2(s.b - o, c.segs[(i + 1) % m].a - o));
-    if (s.kind != ContourSegKind::kLine) {
-      const double dt = s.t1 - s.t0;
-      area += 0.5 * s.r1 * s.r2 * (dt - std::sin(dt));
-    }
+  if (!closed) {
+    open_out->push_back(std::move(c));
+    return;
   }
-  c.area = area;
-  c.hole = area < 0;
+  c.area = contour_area(c.segs);
+  c.hole = c.area < 0;
   out.contours.push_back(std::move(c));
 }
 
@@ -196,7 +190,7 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
 
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                  const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
-                 ZLevelResult& out) {
+                 ZLevelResult& out, std::vector<ZContour>* open_out) {
   const auto n = std::uint32_t(kept.size());
   // Cluster the ends within `link`.
   std::vector<Vec2> pts(2 * std::size_t(n));
@@ -309,10 +303,18 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
       ++out.stats.repaired_links;
     }
   }
-  // Trace.
+  // Trace (open chains wanted whole: from the pieces nothing enters first).
   std::vector<std::uint8_t> visited(n, 0);
-  std::vector<std::uint32_t> seq;
-  for (std::uint32_t k = 0; k < n; ++k) {
+  std::vector<std::uint32_t> seq, trace_order;
+  if (open_out) {
+    std::vector<std::uint8_t> entered(n, 0);
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (!dead[k] && next[k] != kNone) entered[next[k]] = 1;
+    for (std::uint32_t k = 0; k < n; ++k)
+      if (!entered[k]) trace_order.push_back(k);
+  }
+  for (std::uint32_t k = 0; k < n; ++k) trace_order.push_back(k);
+  for (const std::uint32_t k : trace_order) {
     if (dead[k] || visited[k]) continue;
     seq.clear();
     std::uint32_t cur = k;
@@ -330,11 +332,34 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
     }
     if (!closed) {
       ++out.stats.open_chains;
+      if (open_out) emit_loop(el, lv, regions, curves, kept, seq, false, out, open_out);
       continue;
     }
-    emit_loop(el, lv, regions, curves, kept, seq, out);
+    emit_loop(el, lv, regions, curves, kept, seq, true, out, nullptr);
   }
-  std::sort(out.contours.begin(), out.contours.end(), [](const ZContour& a, const ZContour& b) {
+  sort_contours(out.contours);
+}
+
+double contour_area(const std::vector<ContourSeg>& segs) {
+  // The polygon of the end points (with the link gaps between segments, up to
+  // tol::kZLevelLink) plus each arc's cap r1 r2 (dt - sin dt) / 2.
+  const std::size_t m = segs.size();
+  if (m == 0) return 0;
+  const Vec2 o = segs[0].a;
+  double area = 0;
+  for (std::size_t i = 0; i < m; ++i) {
+    const ContourSeg& s = segs[i];
+    area += 0.5 * (cross2(s.a - o, s.b - o) + cross2(s.b - o, segs[(i + 1) % m].a - o));
+    if (s.kind != ContourSegKind::kLine) {
+      const double dt = s.t1 - s.t0;
+      area += 0.5 * s.r1 * s.r2 * (dt - std::sin(dt));
+    }
+  }
+  return area;
+}
+
+void sort_contours(std::vector<ZContour>& contours) {
+  std::sort(contours.begin(), contours.end(), [](const ZContour& a, const ZContour& b) {
     const Vec2 &p = a.segs[0].a, &q = b.segs[0].a;
     if (p.x() != q.x()) return p.x() < q.x();
     if (p.y() != q.y()) return p.y() < q.y();

@@ -47,29 +47,30 @@ TriangleMesh drafted_tower(int rings, int sectors, double draft) {
   return m;
 }
 
-// Contours of a and b equal up to rounding where curves are split (1e-9 mm).
-void expect_same_contours(const ZLevelResult& a, const ZLevelResult& b, const char* what) {
+// Contours of a and b equal up to rounding where curves are split (tol, 1e-9 mm).
+void expect_same_contours(const ZLevelResult& a, const ZLevelResult& b, const char* what,
+                          double tol = 1e-9) {
   ASSERT_EQ(a.contours.size(), b.contours.size()) << what;
   for (std::size_t i = 0; i < a.contours.size(); ++i) {
     const ZContour &p = a.contours[i], &q = b.contours[i];
     ASSERT_EQ(p.segs.size(), q.segs.size()) << what << " contour " << i;
     ASSERT_EQ(p.junctions.size(), q.junctions.size()) << what << " contour " << i;
     EXPECT_EQ(p.hole, q.hole);
-    EXPECT_NEAR(p.area, q.area, 1e-9) << what;
+    EXPECT_NEAR(p.area, q.area, tol) << what;
     for (std::size_t k = 0; k < p.segs.size(); ++k) {
       EXPECT_EQ(p.segs[k].kind, q.segs[k].kind) << what;
       EXPECT_EQ(p.segs[k].element, q.segs[k].element) << what;
       EXPECT_EQ(p.segs[k].shadow, q.segs[k].shadow) << what;
-      EXPECT_LT((p.segs[k].a - q.segs[k].a).norm(), 1e-9) << what;
-      EXPECT_LT((p.segs[k].b - q.segs[k].b).norm(), 1e-9) << what;
+      EXPECT_LT((p.segs[k].a - q.segs[k].a).norm(), tol) << what;
+      EXPECT_LT((p.segs[k].b - q.segs[k].b).norm(), tol) << what;
     }
     for (std::size_t k = 0; k < p.junctions.size(); ++k) {
       EXPECT_EQ(p.junctions[k].kind, q.junctions[k].kind) << what;
       EXPECT_EQ(p.junctions[k].e1, q.junctions[k].e1) << what;
       EXPECT_EQ(p.junctions[k].e2, q.junctions[k].e2) << what;
-      EXPECT_LT((p.junctions[k].position - q.junctions[k].position).norm(), 1e-9) << what;
-      EXPECT_LT((p.junctions[k].b1 - q.junctions[k].b1).norm(), 1e-9) << what;
-      EXPECT_LT((p.junctions[k].b2 - q.junctions[k].b2).norm(), 1e-9) << what;
+      EXPECT_LT((p.junctions[k].position - q.junctions[k].position).norm(), tol) << what;
+      EXPECT_LT((p.junctions[k].b1 - q.junctions[k].b1).norm(), tol) << what;
+      EXPECT_LT((p.junctions[k].b2 - q.junctions[k].b2).norm(), tol) << what;
     }
   }
 }
@@ -332,6 +333,57 @@ TEST(ZLevelInside, UnderAnOverhangTheHigherContoursAreCopied) {
   ASSERT_EQ(grown.contours.size(), 1u);
   const double r = std::sqrt(R * R - 0.25);
   EXPECT_NEAR(grown.contours[0].area, 80 * 80 + 4 * 80 * r + kPi * r * r, 1e-9);
+}
+
+// The mushroom with a post on each side of the plate (x 31 to 36 and -36 to -31, y -3 to 3, z
+// 4 to 20), outside the cap's square: at the centre 17.5 their tops (offset to 22.5) and top
+// edges make U the cap's square grown by R with a rounded rectangle on each side. The kernel
+// computes U near the posts only, within two x-slabs, and splices it to the higher level's
+// contours elsewhere.
+TEST(ZLevelInside, ChangesNearAFewElementsAreSplicedIn) {
+  TriangleMesh mesh;
+  add_box(mesh, Vec3(-30, -30, 30), Vec3(30, 30, 40));
+  add_box(mesh, Vec3(-5, -5, 4), Vec3(5, 5, 31));
+  add_box(mesh, Vec3(-40, -40, 0), Vec3(40, 40, 5));
+  add_box(mesh, Vec3(31, -3, 4), Vec3(36, 3, 20));
+  add_box(mesh, Vec3(-36, -3, 4), Vec3(-31, 3, 20));
+  const double R = 2.5;
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kVertical);
+  const ZLevelElementBoxes boxes = zlevel_element_boxes(el);
+  const std::vector<std::uint32_t> all = all_ids(el);
+  const ZLevelResult higher = run(el, 21);  // the centre at 23.5: the posts lie below
+  ASSERT_EQ(higher.contours.size(), 1u);
+  const double square = 60 * 60 + 4 * 60 * R + kPi * R * R;
+  EXPECT_NEAR(higher.contours[0].area, square, 1e-9);
+  const ZLevelInside q = zlevel_inside(higher, 0.5 * R);
+  ZLevelParams kp;
+  kp.inside = &q;
+  kp.boxes = &boxes;
+  kp.unfiltered = all;
+  const ZLevelResult spliced = zlevel_contours(el, all, 15, kp);
+  EXPECT_EQ(spliced.stats.spliced, 1u);
+  EXPECT_EQ(spliced.stats.unchanged, 0u);
+  EXPECT_EQ(spliced.stats.open_chains, 0u);
+  // Where a wall's line meets its corner's circle at a tangent, the kernel places the joint
+  // to ~sqrt(rounding): 3.4e-7 mm here at the cap's corners, at this level and at the higher
+  // one differently (the spliced contours keep the higher level's there).
+  expect_same_contours(run(el, 15), spliced, "spliced", 1e-6);
+  ASSERT_EQ(spliced.contours.size(), 1u);
+  // Each post's rectangle grown by R less the part inside the square (x within 32.5).
+  const double post = 5 * 6 + 2 * R * (5 + 6) + kPi * R * R;
+  const double overlap = 1.5 * 11 + R * 6 + kPi * R * R / 2;
+  EXPECT_NEAR(spliced.contours[0].area, square + 2 * (post - overlap), 1e-9);
+  int concave = 0;
+  for (const ZJunction& j : spliced.contours[0].junctions) {
+    EXPECT_EQ(j.position.z(), 15.0);
+    concave += j.kind == JunctionKind::kSharpConcave;
+  }
+  EXPECT_EQ(concave, 4);  // where the posts' sides meet the square's
+  // Without the unfiltered candidates the kernel computes the level in full.
+  kp.unfiltered = {};
+  const ZLevelResult full = zlevel_contours(el, all, 15, kp);
+  EXPECT_EQ(full.stats.spliced, 0u);
+  expect_same_contours(spliced, full, "full", 1e-6);
 }
 
 TEST(ZLevelInside, OpenChainsGiveNoRegion) {

@@ -1,0 +1,286 @@
+// Z-level contours (kernels/scan/zlevel.hpp): a level whose U differs from the known inside
+// region's only within some x-slabs is the region's contours outside the slabs joined to a
+// local computation's inside them, along vertical cut lines. Declarations: zlevel_detail.hpp.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+
+#include "kernels/geom/tolerance.hpp"
+#include "kernels/scan/zlevel_detail.hpp"
+
+namespace ncpath::zlevel_detail {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// x(t) = cx + A cos t + B sin t on an arc (perp(axis) = (-axis.y, axis.x)).
+void arc_x_coefficients(const ContourSeg& s, double& A, double& B) {
+  A = s.r1 * s.axis.x();
+  B = -s.r2 * s.axis.y();
+}
+
+// The parameters of an arc in (t0, t1) where x is extreme (ascending).
+std::vector<double> arc_x_extremes(const ContourSeg& s) {
+  double A, B;
+  arc_x_coefficients(s, A, B);
+  std::vector<double> out;
+  if (A == 0 && B == 0) return out;
+  const double phi = std::atan2(B, A);  // x' = 0 at phi + k pi
+  const double k0 = std::ceil((s.t0 - phi) / kPi);
+  for (double k = k0;; ++k) {
+    const double t = phi + k * kPi;
+    if (!(t < s.t1)) break;
+    if (t > s.t0) out.push_back(t);
+  }
+  return out;
+}
+
+// The sub-segment of s between fractions f0 < f1 of its parameter, its ends pa and pb.
+ContourSeg sub_seg(const ContourSeg& s, double f0, double f1, const Vec2& pa, const Vec2& pb) {
+  ContourSeg r = s;
+  r.a = pa;
+  r.b = pb;
+  if (s.kind != ContourSegKind::kLine) {
+    const double dt = s.t1 - s.t0;
+    r.t0 = s.t0 + f0 * dt;
+    r.t1 = f1 == 1 ? s.t1 : s.t0 + f1 * dt;
+  }
+  return r;
+}
+
+// The fractions in (0, 1) where s crosses x = X (ascending), found by bisection on the parts
+// of s where x is monotone.
+void crossings(const ContourSeg& s, double X, std::vector<double>& out) {
+  std::vector<double> f = {0};
+  if (s.kind != ContourSegKind::kLine)
+    for (double t : arc_x_extremes(s)) f.push_back((t - s.t0) / (s.t1 - s.t0));
+  f.push_back(1);
+  auto x_at = [&](double g) { return g == 0 ? s.a.x() : g == 1 ? s.b.x() : seg_point(s, g).x(); };
+  for (std::size_t k = 0; k + 1 < f.size(); ++k) {
+    double lo = f[k], hi = f[k + 1];
+    const double xl = x_at(lo) - X, xh = x_at(hi) - X;
+    if (!(xl * xh < 0)) continue;
+    const bool rising = xl < 0;
+    for (int it = 0; it < 200 && lo < hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      if (mid <= lo || mid >= hi) break;
+      if ((x_at(mid) < X) == rising)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    out.push_back(0.5 * (lo + hi));
+  }
+}
+
+// One segment with the junction at its start (if any).
+struct JSeg {
+  ContourSeg seg;
+  std::optional<ZJunction> junction;
+};
+
+// A run of kept sub-segments from a cut point to a cut point, or a whole loop.
+struct Chain {
+  std::vector<JSeg> segs;
+  bool closed = false;
+};
+
+bool same_curve(const ContourSeg& p, const ContourSeg& q) {
+  return p.element == q.element && p.kind == q.kind && p.shadow == q.shadow;
+}
+
+}  // namespace
+
+bool cuts_are_clear(const std::vector<ZContour>& contours, const std::vector<double>& cuts,
+                    double clearance) {
+  for (const ZContour& c : contours)
+    for (const ContourSeg& s : c.segs) {
+      for (double X : cuts) {
+        if (std::abs(s.a.x() - X) < clearance) return false;
+        if (s.kind == ContourSegKind::kLine) continue;
+        for (double t : arc_x_extremes(s))
+          if (std::abs(seg_point(s, (t - s.t0) / (s.t1 - s.t0)).x() - X) < clearance) return false;
+      }
+    }
+  return true;
+}
+
+bool splice_contours(const std::vector<ZContour>& outer, const std::vector<ZContour>& local,
+                     const std::vector<ZContour>& local_open, const std::vector<double>& cuts,
+                     const std::vector<std::uint8_t>& inside, double tip_z,
+                     std::vector<ZContour>& out) {
+  // The side of x: the index of the interval between cuts; inside[k] says whether it is the
+  // local computation's.
+  auto side = [&](double x) {
+    return std::size_t(std::upper_bound(cuts.begin(), cuts.end(), x) - cuts.begin());
+  };
+  std::vector<Chain> chains[2];  // 0: from `outer`, 1: from `local`
+  for (int pass = 0; pass < 3; ++pass) {
+    const int src = pass == 0 ? 0 : 1;
+    const bool cyclic = pass < 2;
+    const std::vector<ZContour>& from = pass == 0 ? outer : pass == 1 ? local : local_open;
+    for (const ZContour& c : from) {
+      // Split every segment at the cuts; mark the pieces kept.
+      std::vector<JSeg> pieces;
+      std::vector<std::uint8_t> keep;
+      std::size_t next_j = 0;
+      for (std::size_t i = 0; i < c.segs.size(); ++i) {
+        const ContourSeg& s = c.segs[i];
+        std::vector<double> f;
+        for (double X : cuts) crossings(s, X, f);
+        std::sort(f.begin(), f.end());
+        f.push_back(1);
+        double f0 = 0;
+        Vec2 pa = s.a;
+        for (std::size_t k = 0; k < f.size(); ++k) {
+          const double f1 = f[k];
+          Vec2 pb = s.b;
+          if (f1 < 1) {
+            pb = seg_point(s, f1);
+            // On its cut line exactly: the nearest cut.
+            const std::size_t q = side(pb.x());
+            double X = q < cuts.size() ? cuts[q] : cuts.back();
+            if (q > 0 && std::abs(cuts[q - 1] - pb.x()) < std::abs(X - pb.x())) X = cuts[q - 1];
+            pb.x() = X;
+          }
+          JSeg js{sub_seg(s, f0, f1, pa, pb), std::nullopt};
+          if (k == 0 && next_j < c.junctions.size() && c.junctions[next_j].seg == i) {
+            js.junction = c.junctions[next_j++];
+            js.junction->position.z() = tip_z;
+          }
+          const Vec2 m = seg_point(js.seg, 0.5);
+          keep.push_back(std::uint8_t((inside[side(m.x())] != 0) == (src == 1)));
+          pieces.push_back(js);
+          f0 = f1;
+          pa = pb;
+        }
+      }
+      const std::size_t n = pieces.size();
+      std::size_t first = n;  // a piece that starts a run (kept, after one not kept)
+      for (std::size_t k = 0; k < n; ++k)
+        if (keep[k] && !keep[(k + n - 1) % n]) {
+          first = k;
+          break;
+        }
+      if (!cyclic) first = 0;
+      if (first == n) {
+        if (keep[0]) chains[src].push_back({std::move(pieces), true});
+        continue;
+      }
+      if (!cyclic && n > 0 && keep[0]) return false;      // an open chain's start is kept
+      if (!cyclic && n > 0 && keep[n - 1]) return false;  // its end too
+      for (std::size_t q = 0; q < n;) {
+        const std::size_t k = (first + q) % n;
+        if (!keep[k]) {
+          ++q;
+          continue;
+        }
+        Chain ch;
+        while (q < n && keep[(first + q) % n]) ch.segs.push_back(pieces[(first + q++) % n]);
+        chains[src].push_back(std::move(ch));
+      }
+    }
+  }
+  // Each open chain's end meets one open chain of the other source's start on a cut line.
+  const double link = tol::kZLevelLink;
+  std::vector<std::uint32_t> next[2];
+  for (int src = 0; src < 2; ++src) {
+    next[src].assign(chains[src].size(), kNone);
+    for (std::size_t i = 0; i < chains[src].size(); ++i) {
+      const Chain& a = chains[src][i];
+      if (a.closed) continue;
+      const ContourSeg& end = a.segs.back().seg;
+      std::uint32_t found = kNone;
+      for (std::size_t j = 0; j < chains[1 - src].size(); ++j) {
+        const Chain& b = chains[1 - src][j];
+        if (b.closed) continue;
+        const ContourSeg& start = b.segs.front().seg;
+        if ((start.a - end.b).norm() > 10 * link) continue;
+        if (found != kNone || (start.a - end.b).norm() > link || !same_curve(start, end) ||
+            b.segs.front().junction)
+          return false;  // ambiguous, or not the same curve on both sides
+        found = std::uint32_t(j);
+      }
+      if (found == kNone) return false;
+      next[src][i] = found;
+    }
+  }
+  // Every start is met once.
+  for (int src = 0; src < 2; ++src) {
+    std::vector<std::uint8_t> met(chains[1 - src].size(), 0);
+    for (std::uint32_t j : next[src])
+      if (j != kNone && met[j]++) return false;
+  }
+  // Loops: the closed chains, and the open ones followed from source to source.
+  std::vector<std::vector<JSeg>> loops;
+  for (int src = 0; src < 2; ++src)
+    for (const Chain& c : chains[src])
+      if (c.closed) loops.push_back(c.segs);
+  std::vector<std::uint8_t> used[2] = {std::vector<std::uint8_t>(chains[0].size(), 0),
+                                       std::vector<std::uint8_t>(chains[1].size(), 0)};
+  for (std::size_t i0 = 0; i0 < chains[0].size(); ++i0) {
+    if (chains[0][i0].closed || used[0][i0]) continue;
+    std::vector<JSeg> loop;
+    int src = 0;
+    std::size_t i = i0;
+    while (!used[src][i]) {
+      used[src][i] = 1;
+      for (const JSeg& js : chains[src][i].segs) {
+        // The two halves of a segment cut at the line join again.
+        if (!loop.empty() && &js == &chains[src][i].segs.front()) {
+          JSeg& last = loop.back();
+          last.seg.b = js.seg.b;
+          last.seg.t1 += js.seg.t1 - js.seg.t0;
+          continue;
+        }
+        loop.push_back(js);
+      }
+      const std::uint32_t j = next[src][i];
+      src = 1 - src;
+      i = j;
+    }
+    if (src != 0 || i != i0) return false;  // not back where it started
+    // The first segment continues the last (cut at the line where the loop was entered).
+    JSeg& last = loop.back();
+    last.seg.b = loop.front().seg.b;
+    last.seg.t1 = last.seg.t1 + (loop.front().seg.t1 - loop.front().seg.t0);
+    loop.front() = last;
+    loop.pop_back();
+    loops.push_back(std::move(loop));
+  }
+  for (int src = 0; src < 2; ++src)
+    for (std::size_t i = 0; i < chains[src].size(); ++i)
+      if (!chains[src][i].closed && !used[src][i]) return false;
+
+  // Canonical loops (as build_loops writes them).
+  out.clear();
+  for (std::vector<JSeg>& loop : loops) {
+    std::size_t start = 0;
+    for (std::size_t i = 1; i < loop.size(); ++i) {
+      const ContourSeg &a = loop[i].seg, &b = loop[start].seg;
+      if (a.a.x() < b.a.x() ||
+          (a.a.x() == b.a.x() &&
+           (a.a.y() < b.a.y() || (a.a.y() == b.a.y() && a.element < b.element))))
+        start = i;
+    }
+    std::rotate(loop.begin(), loop.begin() + std::ptrdiff_t(start), loop.end());
+    ZContour c;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      c.segs.push_back(loop[i].seg);
+      if (loop[i].junction) {
+        ZJunction j = *loop[i].junction;
+        j.seg = std::uint32_t(i);
+        c.junctions.push_back(j);
+      }
+    }
+    c.area = contour_area(c.segs);
+    c.hole = c.area < 0;
+    out.push_back(std::move(c));
+  }
+  sort_contours(out);
+  return true;
+}
+
+}  // namespace ncpath::zlevel_detail
