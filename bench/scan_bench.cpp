@@ -109,6 +109,32 @@ void BM_ZLevelInside(benchmark::State& state, const std::string& name) {
   state.counters["open_chains"] = double(r.stats.open_chains);
 }
 
+// A level in anchor_dense's lower part (tip z -70.341, under the overhang of its upper part)
+// with the region of the level 4 mm above, as the engine's chunks have it: computed in full
+// (splice false) or, where only the elements near the flukes' tips change U, computed there
+// and spliced to the region's contours (splice true: ZLevelParams::unfiltered).
+void BM_ZLevelLow(benchmark::State& state, bool splice) {
+  const Prepared& p = prepared("anchor_dense");
+  std::vector<std::uint32_t> all(p.el.facet_count() + p.el.edge_count());
+  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const double z = -70.341;
+  const ZLevelElementBoxes boxes = zlevel_element_boxes(p.el);
+  ZLevelParams params;
+  params.boxes = &boxes;
+  const ZLevelInside inside =
+      zlevel_inside(zlevel_contours(p.el, all, z + 4, params), 0.5 * p.el.radius);
+  params.inside = &inside;
+  if (splice) params.unfiltered = all;
+  ZLevelResult r;
+  for (auto _ : state) {
+    r = zlevel_contours(p.el, all, z, params);
+    benchmark::DoNotOptimize(r.contours.data());
+  }
+  state.counters["contours"] = double(r.contours.size());
+  state.counters["regions"] = double(r.stats.regions);
+  state.counters["spliced"] = double(r.stats.spliced);
+}
+
 BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_trimmed, std::string("bunny00"), true)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_whole, std::string("bunny00"), false)
@@ -125,6 +151,8 @@ BENCHMARK_CAPTURE(BM_ZLevelInside, bunny00_mid, std::string("bunny00"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ZLevelInside, anchor_dense_mid, std::string("anchor_dense"))
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevelLow, anchor_dense_full, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ZLevelLow, anchor_dense_spliced, true)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace ncpath

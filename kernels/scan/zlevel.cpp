@@ -218,9 +218,8 @@ static bool changed_regions(const OffsetElements& el, const std::vector<std::uin
 // contours' width (`extent`): cut lines around the changed regions' x-ranges `xs` (grown by
 // R; moved outwards by up to 7 R / 16 until clear of the known contours' segment ends and
 // arc extremes), the contours of the local candidates (those of params.unfiltered whose box
-// meets a slab; their union is U within the slabs) computed with the known region restricted
-// to the slabs (inside_within), and the two spliced (splice_contours). False when that does
-// not apply or the contours do not meet.
+// meets a slab; their union is U within the slabs) computed, and the two spliced
+// (splice_contours). False when that does not apply or the contours do not meet.
 static bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>> xs,
                            const ZLevelInside& q, const double* extent, double tip_z,
                            const ZLevelParams& params, ZLevelResult& result) {
@@ -277,19 +276,14 @@ static bool splice_changed(const OffsetElements& el, std::vector<std::array<doub
   };
   for (std::uint32_t id : params.unfiltered)
     if (in_slab(box[id][0], box[id][2])) local_cand.push_back(id);
-  // The known region within the slabs lies inside their union there.
-  std::vector<std::array<double, 2>> within;
-  for (std::size_t k = 0; k < inside.size(); ++k)
-    if (inside[k])
-      within.push_back({k == 0 ? -INFINITY : cuts[k - 1], k < cuts.size() ? cuts[k] : INFINITY});
-  const ZLevelInside qw = inside_within(q, within);
+  // Without the known region: it lies inside U, not inside the union of the local candidates
+  // outside the slabs (chains may not close there).
   ZLevelParams lp = params;
-  lp.inside = &qw;
+  lp.inside = nullptr;
   lp.candidates_filtered = false;
   lp.unfiltered = {};
   std::vector<ZContour> local_open;
   ZLevelResult local = contours_impl(el, local_cand, tip_z, lp, &local_open);
-  // Outside the slabs the local union lacks regions (chains may not close there).
   if (local.stats.repaired_links > 0) return false;
   std::vector<ZContour> out;
   if (!cuts_are_clear(local.contours, cuts, clearance) ||

@@ -181,12 +181,12 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
 // levels, so their segments are shadows at both and their contact vectors horizontal. When
 // the other regions lie within x-slabs covering less than 0.4 of the contours' width (with
 // ZLevelParams::unfiltered), U differs from the region's U only there: the kernel computes
-// the contours of the candidates meeting the slabs (with the region restricted to them) and
-// splices them to the region's along vertical cut lines clear of segment ends and arc
-// extremes, where both run along the same element's curve (ZLevelStats::spliced). The
-// result is the same as the full computation's up to rounding where curves are split (at a
-// line's tangent joint with a circle, ~sqrt(rounding)); when the pieces do not meet one to
-// one at the cuts, the level is computed in full.
+// the contours of the candidates meeting the slabs (without the region) and splices them to
+// the region's along vertical cut lines clear of segment ends and arc extremes, where both
+// run along the same element's curve (ZLevelStats::spliced). The result is the same as the
+// full computation's up to rounding where curves are split (at a line's tangent joint with a
+// circle, ~sqrt(rounding)); when the pieces do not meet one to one at the cuts, the level is
+// computed in full.
 struct ZLevelInside {
   double x0 = 0, y0 = 0, cell = 1;
   int nx = 0, ny = 0;
@@ -194,8 +194,7 @@ struct ZLevelInside {
   std::uint32_t polygon_edges = 0;         // edges[0, polygon_edges) count for the parity
   std::vector<std::uint32_t> start, ids;   // CSR: the edges whose box meets each cell
   std::vector<Vec2> ref;                   // per cell: the reference point
-  // 0 outside, 1 inside, 2 blocked (no reference), 3 outside a part kept (inside_within)
-  std::vector<std::uint8_t> ref_state;
+  std::vector<std::uint8_t> ref_state;     // 0 outside, 1 inside, 2 blocked (no reference)
   std::vector<std::uint8_t> far;  // per cell: cells (Chebyshev, capped) to the nearest with an edge
   // mm: tol::kZLevelInsideMargin, or tol::kZLevelInsideRepaired when the contours had repaired
   // links (the polygon may then leave U by up to their gaps there).

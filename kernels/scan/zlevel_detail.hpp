@@ -309,10 +309,6 @@ bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, d
 bool region_in_known(const OffsetElements& el, const ZLevelInside& q, const Region& g,
                      const Level& lv, double depth);
 
-// q within the x-slabs (x0, x1): the grid columns not wholly inside one are blocked (never
-// known inside), with edges between them and the others.
-ZLevelInside inside_within(const ZLevelInside& q, const std::vector<std::array<double, 2>>& slabs);
-
 // Whether x lies within tol of a polygon edge that is on the contour exactly (q.exact).
 bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol);
 

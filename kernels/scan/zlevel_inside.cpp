@@ -87,7 +87,7 @@ void fill_far(ZLevelInside& q);
 // meeting on it counts once). Only for x not on an edge (callers check its clearance).
 bool parity_inside(const ZLevelInside& q, const Vec2& x) {
   const int c = cell_of(q, x);
-  if (c < 0 || q.ref_state[c] >= 2) return false;
+  if (c < 0 || q.ref_state[c] == 2) return false;
   const Vec2& r = q.ref[c];
   const Vec2 d = x - r;
   bool in = q.ref_state[c] == 1;
@@ -253,67 +253,6 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
   if (higher.stats.repaired_links == 0) q.contours = higher.contours;
   return q;
 }
-
-namespace zlevel_detail {
-
-ZLevelInside inside_within(const ZLevelInside& q, const std::vector<std::array<double, 2>>& slabs) {
-  ZLevelInside w;
-  w.x0 = q.x0;
-  w.y0 = q.y0;
-  w.cell = q.cell;
-  w.nx = q.nx;
-  w.ny = q.ny;
-  w.margin = q.margin;
-  w.tip_z = q.tip_z;
-  // Columns wholly inside a slab keep their reference points and the edges that reach them;
-  // the others lie outside (ref_state 3), and the sides between the two become edges.
-  std::vector<std::uint8_t> keep(std::size_t(w.nx), 0);
-  for (int i = 0; i < w.nx; ++i) {
-    const double x0 = w.x0 + i * w.cell, x1 = x0 + w.cell;
-    for (const auto& s : slabs) keep[i] |= s[0] <= x0 && x1 <= s[1];
-  }
-  auto kept_x = [&](double a, double b) {
-    const int i0 = std::max(0, int(std::floor((a - w.x0) / w.cell)));
-    const int i1 = std::min(w.nx - 1, int(std::floor((b - w.x0) / w.cell)));
-    for (int i = i0; i <= i1; ++i)
-      if (keep[i]) return true;
-    return false;
-  };
-  for (std::uint32_t e = 0; e < q.polygon_edges; ++e) {
-    const Vec2 &a = q.edges[e][0], &b = q.edges[e][1];
-    if (!kept_x(std::min(a.x(), b.x()), std::max(a.x(), b.x()))) continue;
-    w.edges.push_back(q.edges[e]);
-    w.exact.push_back(q.exact[e]);
-  }
-  w.polygon_edges = std::uint32_t(w.edges.size());
-  w.ref = q.ref;
-  w.ref_state = q.ref_state;
-  for (int j = 0; j < w.ny; ++j)
-    for (int i = 0; i < w.nx; ++i) {
-      const std::size_t c = std::size_t(j) * w.nx + i;
-      if (!keep[i]) {
-        w.ref_state[c] = 3;
-      } else if (w.ref_state[c] == 2) {  // blocked before: its sides again
-        ++w.blocked_cells;
-        const double x0 = w.x0 + i * w.cell, y0 = w.y0 + j * w.cell;
-        const Vec2 p[4] = {Vec2(x0, y0), Vec2(x0 + w.cell, y0), Vec2(x0 + w.cell, y0 + w.cell),
-                           Vec2(x0, y0 + w.cell)};
-        for (int k = 0; k < 4; ++k) w.edges.push_back({p[k], p[(k + 1) % 4]});
-      }
-    }
-  for (int i = 0; i <= w.nx; ++i) {
-    const bool left = i > 0 && keep[i - 1], right = i < w.nx && keep[i];
-    if (left == right) continue;
-    const double x = w.x0 + i * w.cell;
-    for (int j = 0; j < w.ny; ++j)
-      w.edges.push_back({Vec2(x, w.y0 + j * w.cell), Vec2(x, w.y0 + (j + 1) * w.cell)});
-  }
-  fill_cells(w);
-  fill_far(w);
-  return w;
-}
-
-}  // namespace zlevel_detail
 
 namespace {
 
