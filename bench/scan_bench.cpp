@@ -73,40 +73,46 @@ void BM_ScanPlane(benchmark::State& state, const std::string& name, bool trim) {
   state.counters["segments"] = double(curve.segments.size());
 }
 
-void BM_ZLevel(benchmark::State& state, const std::string& name) {
-  const Prepared& p = prepared(name);
+// The facet and edge ids of p (the z-level candidates when all are given).
+std::vector<std::uint32_t> facets_and_edges(const Prepared& p) {
   std::vector<std::uint32_t> all(p.el.facet_count() + p.el.edge_count());
   for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
-  const double z = 0.5 * (p.box.lo.z() + p.box.hi.z()) + 0.0123;
+  return all;
+}
+
+// Times the z-level kernel at tip z; the contours, regions and open chains as counters.
+ZLevelResult time_level(benchmark::State& state, const Prepared& p,
+                        const std::vector<std::uint32_t>& ids, double z,
+                        const ZLevelParams& params) {
   ZLevelResult r;
   for (auto _ : state) {
-    r = zlevel_contours(p.el, all, z);
+    r = zlevel_contours(p.el, ids, z, params);
     benchmark::DoNotOptimize(r.contours.data());
   }
   state.counters["contours"] = double(r.contours.size());
-  state.counters["candidates"] = double(r.stats.candidates);
+  state.counters["regions"] = double(r.stats.regions);
   state.counters["open_chains"] = double(r.stats.open_chains);
+  return r;
+}
+
+void BM_ZLevel(benchmark::State& state, const std::string& name) {
+  const Prepared& p = prepared(name);
+  const double z = 0.5 * (p.box.lo.z() + p.box.hi.z()) + 0.0123;
+  const ZLevelResult r = time_level(state, p, facets_and_edges(p), z, {});
+  state.counters["candidates"] = double(r.stats.candidates);
 }
 
 // The same level knowing the region of the level 1 mm above to lie inside (ZLevelInside, as
 // the engine's chunks do): same contours, the regions deep inside it dropped.
 void BM_ZLevelInside(benchmark::State& state, const std::string& name) {
   const Prepared& p = prepared(name);
-  std::vector<std::uint32_t> all(p.el.facet_count() + p.el.edge_count());
-  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const std::vector<std::uint32_t> all = facets_and_edges(p);
   const double z = 0.5 * (p.box.lo.z() + p.box.hi.z()) + 0.0123;
   const ZLevelInside inside = zlevel_inside(zlevel_contours(p.el, all, z + 1), 0.5 * p.el.radius);
   ZLevelParams params;
   params.inside = &inside;
-  ZLevelResult r;
-  for (auto _ : state) {
-    r = zlevel_contours(p.el, all, z, params);
-    benchmark::DoNotOptimize(r.contours.data());
-  }
-  state.counters["contours"] = double(r.contours.size());
-  state.counters["regions"] = double(r.stats.regions);
+  const ZLevelResult r = time_level(state, p, all, z, params);
   state.counters["dropped"] = double(r.stats.inside_regions);
-  state.counters["open_chains"] = double(r.stats.open_chains);
 }
 
 // A level in anchor_dense's lower part (tip z -70.341, under the overhang of its upper part)
@@ -115,8 +121,7 @@ void BM_ZLevelInside(benchmark::State& state, const std::string& name) {
 // and spliced to the region's contours (splice true: ZLevelParams::unfiltered).
 void BM_ZLevelLow(benchmark::State& state, bool splice) {
   const Prepared& p = prepared("anchor_dense");
-  std::vector<std::uint32_t> all(p.el.facet_count() + p.el.edge_count());
-  for (std::uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const std::vector<std::uint32_t> all = facets_and_edges(p);
   const double z = -70.341;
   const ZLevelElementBoxes boxes = zlevel_element_boxes(p.el);
   ZLevelParams params;
@@ -125,13 +130,7 @@ void BM_ZLevelLow(benchmark::State& state, bool splice) {
       zlevel_inside(zlevel_contours(p.el, all, z + 4, params), 0.5 * p.el.radius);
   params.inside = &inside;
   if (splice) params.unfiltered = all;
-  ZLevelResult r;
-  for (auto _ : state) {
-    r = zlevel_contours(p.el, all, z, params);
-    benchmark::DoNotOptimize(r.contours.data());
-  }
-  state.counters["contours"] = double(r.contours.size());
-  state.counters["regions"] = double(r.stats.regions);
+  const ZLevelResult r = time_level(state, p, all, z, params);
   state.counters["spliced"] = double(r.stats.spliced);
 }
 

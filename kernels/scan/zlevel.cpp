@@ -1,7 +1,8 @@
 // Z-level contours (kernels/scan/zlevel.hpp): the top-level flow of zlevel_contours. Pruning
 // grid, regions and candidate curves, active (uncovered) curves, coincident trimming, splits
 // at tangent joints and crossings. Cover and piece classification: zlevel_cover.cpp; linking
-// and output: zlevel_loops.cpp.
+// and output: zlevel_loops.cpp; levels copied or spliced from the known inside region:
+// zlevel_splice.cpp.
 #include "kernels/scan/zlevel.hpp"
 
 #include <algorithm>
@@ -159,153 +160,15 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el) {
   return out;
 }
 
-static ZLevelResult contours_impl(const OffsetElements& el,
-                                  std::span<const std::uint32_t> candidates, double tip_z,
-                                  const ZLevelParams& params, std::vector<ZContour>* open_out);
-
-// The regions of the candidates `cand` (facets, edges and their end vertices, vertices) that
-// may make U at level lv differ from the known inside region's U (ZLevelInside): their
-// x-ranges (at most `limit` of them; false when there are more). The others are empty, lie
-// wholly above the region's level (strictly; such a region is the same there, inside U) or
-// inside its polygon (by its margin; the polygon is inscribed in the region). U only grows
-// going down: with none, U is the region's U.
-static bool changed_regions(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
-                            const ZLevelInside& q, const Level& lv, bool reach,
-                            const double* extent, std::vector<std::array<double, 2>>& xs) {
-  const double zc_known = q.tip_z + lv.R;
-  const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
-  // The x-ranges grown by R on bins over the extent: more than half of it covered is too much
-  // for splicing (splice_changed).
-  constexpr int kBins = 512;
-  std::array<std::uint8_t, kBins> bin{};
-  int covered = 0;
-  const double bw = (extent[1] - extent[0]) / kBins;
-  // The region of element id, of lowest point `low`; false when they cover too much.
-  auto visit = [&](std::uint32_t id, double low) {
-    if (low > zc_known) return true;
-    Region g;
-    if (!build_region(el, id, lv, reach, g) || region_in_known(el, q, g, lv, q.margin))
-      return true;
-    xs.push_back({g.box[0], g.box[2]});
-    if (!(bw > 0)) return false;
-    const int b0 = std::clamp(int(std::floor((g.box[0] - lv.R - extent[0]) / bw)), 0, kBins - 1);
-    const int b1 = std::clamp(int(std::floor((g.box[2] + lv.R - extent[0]) / bw)), 0, kBins - 1);
-    for (int b = b0; b <= b1; ++b) covered += bin[b] ? 0 : (bin[b] = 1);
-    return 2 * covered <= kBins;
-  };
-  auto visit_vertex = [&](std::uint32_t point) {
-    const auto it = std::lower_bound(el.vertex_source.begin(), el.vertex_source.end(), point);
-    if (it == el.vertex_source.end() || *it != point) return true;  // not a vertex element
-    return visit(el.vertex_id(std::size_t(it - el.vertex_source.begin())), el.points[point].z());
-  };
-  for (const std::uint32_t id : cand) {
-    if (id < nf) {
-      double low = INFINITY;
-      for (const Vec3& v : el.facet_tri[id]) low = std::min(low, v.z());
-      if (!visit(id, low)) return false;
-    } else if (id < nf + ne) {
-      const auto& ev = el.edge_vertices[id - nf];
-      const double low = std::min(el.points[ev[0]].z(), el.points[ev[1]].z());
-      if (!visit(id, low) || !visit_vertex(ev[0]) || !visit_vertex(ev[1])) return false;
-    } else if (!visit_vertex(el.vertex_source[id - nf - ne])) {
-      return false;
-    }
-  }
-  return true;
-}
-
-// Where U differs from the known region's U only within x-slabs covering a small part of the
-// contours' width (`extent`): cut lines around the changed regions' x-ranges `xs` (grown by
-// R; moved outwards by up to 7 R / 16 until clear of the known contours' segment ends and
-// arc extremes), the contours of the local candidates (those of params.unfiltered whose box
-// meets a slab; their union is U within the slabs) computed, and the two spliced
-// (splice_contours). False when that does not apply or the contours do not meet.
-static bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>> xs,
-                           const ZLevelInside& q, const double* extent, double tip_z,
-                           const ZLevelParams& params, ZLevelResult& result) {
-  if (xs.empty() || params.unfiltered.empty() || !params.boxes) return false;
-  const double R = el.radius, lo = extent[0], hi = extent[1];
-  // Slabs: the x-ranges grown by R, merged.
-  std::sort(xs.begin(), xs.end());
-  std::vector<std::array<double, 2>> slabs;
-  for (const auto& x : xs) {
-    const double a = x[0] - R, b = x[1] + R;
-    if (!slabs.empty() && a <= slabs.back()[1])
-      slabs.back()[1] = std::max(slabs.back()[1], b);
-    else
-      slabs.push_back({a, b});
-  }
-  double width = 0;
-  for (const auto& s : slabs) width += std::min(s[1], hi) - std::max(s[0], lo);
-  if (!(width < 0.4 * (hi - lo))) return false;
-  // Cut lines, each moved outwards until clear (at most R / 2).
-  std::vector<double> cuts;
-  std::vector<std::uint8_t> inside = {0};
-  const double clearance = 1e-6;
-  for (const auto& s : slabs) {
-    for (int side = 0; side < 2; ++side) {
-      double X = s[side];
-      if (side == 0 ? X <= lo : X >= hi) {
-        if (side == 0) inside.back() = 1;  // the slab starts before the contours
-        continue;
-      }
-      bool clear = false;
-      for (int k = 0; k < 8 && !clear; ++k) {
-        const double Xk = X + (side == 0 ? -1 : 1) * (R / 16) * k;
-        if (cuts_are_clear(q.contours, {Xk}, clearance)) {
-          X = Xk;
-          clear = true;
-        }
-      }
-      if (!clear) return false;
-      if (!cuts.empty() && !(X > cuts.back())) return false;
-      cuts.push_back(X);
-      inside.push_back(side == 0 ? 1 : 0);
-    }
-  }
-  if (cuts.empty()) return false;
-  // The local candidates: those meeting a slab (between its cut lines).
-  std::vector<std::uint32_t> local_cand;
-  const auto& box = params.boxes->box;
-  auto in_slab = [&](float x0, float x1) {
-    for (std::size_t k = 0; k + 1 <= cuts.size(); ++k) {
-      const double a = k == 0 ? -INFINITY : cuts[k - 1], b = cuts[k];
-      if (inside[k] && x1 >= a && x0 <= b) return true;
-    }
-    return inside.back() && x1 >= cuts.back();
-  };
-  for (std::uint32_t id : params.unfiltered)
-    if (in_slab(box[id][0], box[id][2])) local_cand.push_back(id);
-  // Without the known region: it lies inside U, not inside the union of the local candidates
-  // outside the slabs (chains may not close there).
-  ZLevelParams lp = params;
-  lp.inside = nullptr;
-  lp.candidates_filtered = false;
-  lp.unfiltered = {};
-  std::vector<ZContour> local_open;
-  ZLevelResult local = contours_impl(el, local_cand, tip_z, lp, &local_open);
-  if (local.stats.repaired_links > 0) return false;
-  std::vector<ZContour> out;
-  if (!cuts_are_clear(local.contours, cuts, clearance) ||
-      !cuts_are_clear(local_open, cuts, clearance) ||
-      !splice_contours(q.contours, local.contours, local_open, cuts, inside, tip_z, out))
-    return false;
-  result.contours = std::move(out);
-  result.stats = local.stats;
-  result.stats.open_chains = 0;
-  result.stats.spliced = 1;
-  return true;
-}
-
 ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
                              double tip_z, const ZLevelParams& params) {
-  return contours_impl(el, candidates, tip_z, params, nullptr);
+  return zlevel_detail::contours_open(el, candidates, tip_z, params, nullptr);
 }
 
-// zlevel_contours; the chains that do not close also go to open_out when given.
-static ZLevelResult contours_impl(const OffsetElements& el,
-                                  std::span<const std::uint32_t> candidates, double tip_z,
-                                  const ZLevelParams& params, std::vector<ZContour>* open_out) {
+ZLevelResult zlevel_detail::contours_open(const OffsetElements& el,
+                                          std::span<const std::uint32_t> candidates,
+                                          double tip_z, const ZLevelParams& params,
+                                          std::vector<ZContour>* open_out) {
   ZLevelResult result;
   result.tip_z = tip_z;
   ZLevelStats& st = result.stats;

@@ -332,22 +332,26 @@ double contour_area(const std::vector<ContourSeg>& segs);
 // In output order: by the first segment's start (x, then y), then its element.
 void sort_contours(std::vector<ZContour>& contours);
 
-// ---- splicing (zlevel_splice.cpp) ----
+// ---- copies and splices (zlevel_splice.cpp, ZLevelInside in zlevel.hpp) ----
 
-// Whether no segment of the contours starts, nor has an arc's extreme x, within `clearance`
-// of a cut line x = cuts[k].
-bool cuts_are_clear(const std::vector<ZContour>& contours, const std::vector<double>& cuts,
-                    double clearance);
+// zlevel_contours (zlevel.cpp); the chains that do not close also go to open_out when given.
+ZLevelResult contours_open(const OffsetElements& el, std::span<const std::uint32_t> candidates,
+                           double tip_z, const ZLevelParams& params,
+                           std::vector<ZContour>* open_out);
 
-// The contours made of the parts of `outer` in the intervals between the (ascending) cut lines
-// where inside[k] is 0 and the parts of `local` where it is 1 (interval k: below cuts[k],
-// above cuts[k - 1]); both must run along the same element's curve across every cut line, and
-// meet there (within tol::kZLevelLink). `local_open`: chains of `local`'s computation that did
-// not close, whose parts kept must lie between cut lines too. The junctions of `outer` are
-// moved to tip_z. False when they do not meet one to one.
-bool splice_contours(const std::vector<ZContour>& outer, const std::vector<ZContour>& local,
-                     const std::vector<ZContour>& local_open, const std::vector<double>& cuts,
-                     const std::vector<std::uint8_t>& inside, double tip_z,
-                     std::vector<ZContour>& out);
+// The x-ranges of the regions of the candidates `cand` (facets, edges and their end vertices,
+// vertices) that may make U at level lv differ from the known inside region q's U. False when
+// they cover (grown by R) more than half of `extent` (x0, x1: the known contours' x-range
+// grown by R). None: U is q's U.
+bool changed_regions(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
+                     const ZLevelInside& q, const Level& lv, bool reach, const double* extent,
+                     std::vector<std::array<double, 2>>& xs);
+
+// With the changed regions' x-ranges xs (not empty): the level's contours, q's outside
+// x-slabs around them and computed from params.unfiltered inside, into result
+// (ZLevelStats::spliced). False when the slabs are too wide or the two do not meet.
+bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>> xs,
+                    const ZLevelInside& q, const double* extent, double tip_z,
+                    const ZLevelParams& params, ZLevelResult& result);
 
 }  // namespace ncpath::zlevel_detail
