@@ -6,7 +6,6 @@
 #include "kernels/scan/zlevel.hpp"
 
 #include <algorithm>
-#include <array>
 #include <bit>
 #include <cmath>
 
@@ -223,32 +222,7 @@ ZLevelResult zlevel_detail::contours_open(const OffsetElements& el,
   });
   if (!(ext[0] <= ext[2])) return result;
   const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
-  if (inside && !inside->contours.empty()) {
-    std::vector<std::array<double, 2>> xs;
-    // The known contours' x extent, grown by R.
-    double extent[2] = {INFINITY, -INFINITY};
-    for (const ZContour& c : inside->contours)
-      for (const ContourSeg& s : c.segs) {
-        extent[0] = std::min(extent[0], s.a.x());
-        extent[1] = std::max(extent[1], s.a.x());
-      }
-    extent[0] -= lv.R;
-    extent[1] += lv.R;
-    if (changed_regions(el, cand, *inside, lv, params.skip_unreachable, extent, xs)) {
-      if (xs.empty()) {
-        result.contours = inside->contours;
-        for (ZContour& c : result.contours)
-          for (ZJunction& j : c.junctions) j.position.z() = tip_z;
-        st.unchanged = 1;
-        return result;
-      }
-      const std::uint64_t n = st.candidates;
-      if (splice_changed(el, std::move(xs), *inside, extent, tip_z, params, result)) {
-        result.stats.candidates = n;
-        return result;
-      }
-    }
-  }
+  if (inside && contours_from_known(el, cand, *inside, lv, tip_z, params, result)) return result;
   Grid grid;
   grid.cell = params.cell > 0 ? params.cell : 0.5 * lv.R;
   const double wx = ext[2] - ext[0], wy = ext[3] - ext[1];

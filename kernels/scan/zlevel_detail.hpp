@@ -339,19 +339,13 @@ ZLevelResult contours_open(const OffsetElements& el, std::span<const std::uint32
                            double tip_z, const ZLevelParams& params,
                            std::vector<ZContour>* open_out);
 
-// The x-ranges of the regions of the candidates `cand` (facets, edges and their end vertices,
-// vertices) that may make U at level lv differ from the known inside region q's U. False when
-// they cover (grown by R) more than half of `extent` (x0, x1: the known contours' x-range
-// grown by R). None: U is q's U.
-bool changed_regions(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
-                     const ZLevelInside& q, const Level& lv, bool reach, const double* extent,
-                     std::vector<std::array<double, 2>>& xs);
-
-// With the changed regions' x-ranges xs (not empty): the level's contours, q's outside
-// x-slabs around them and computed from params.unfiltered inside, into result
-// (ZLevelStats::spliced). False when the slabs are too wide or the two do not meet.
-bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>> xs,
-                    const ZLevelInside& q, const double* extent, double tip_z,
-                    const ZLevelParams& params, ZLevelResult& result);
+// The level's contours when the known inside region q decides them (ZLevelInside): copied
+// where no candidate region (facets, edges and their end vertices, vertices of `cand`) can
+// make U differ from q's U (ZLevelStats::unchanged), or q's outside narrow x-slabs around the
+// regions that can, spliced to a computation from params.unfiltered inside them
+// (ZLevelStats::spliced). False: the level is to be computed in full (result unchanged).
+bool contours_from_known(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
+                         const ZLevelInside& q, const Level& lv, double tip_z,
+                         const ZLevelParams& params, ZLevelResult& result);
 
 }  // namespace ncpath::zlevel_detail

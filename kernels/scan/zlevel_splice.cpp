@@ -293,6 +293,8 @@ bool splice_contours(const std::vector<ZContour>& outer, const std::vector<ZCont
 
 }  // namespace
 
+namespace {
+
 // The regions of the candidates `cand` (facets, edges and their end vertices, vertices) that
 // may make U at level lv differ from the known inside region's U (ZLevelInside): their
 // x-ranges (false when these, grown by R, cover more than half of `extent`, the known
@@ -424,6 +426,36 @@ bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>>
   result.stats = local.stats;
   result.stats.open_chains = 0;
   result.stats.spliced = 1;
+  return true;
+}
+
+}  // namespace
+
+bool contours_from_known(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
+                         const ZLevelInside& q, const Level& lv, double tip_z,
+                         const ZLevelParams& params, ZLevelResult& result) {
+  if (q.contours.empty()) return false;
+  // The known contours' x extent, grown by R.
+  double extent[2] = {INFINITY, -INFINITY};
+  for (const ZContour& c : q.contours)
+    for (const ContourSeg& s : c.segs) {
+      extent[0] = std::min(extent[0], s.a.x());
+      extent[1] = std::max(extent[1], s.a.x());
+    }
+  extent[0] -= lv.R;
+  extent[1] += lv.R;
+  std::vector<std::array<double, 2>> xs;
+  if (!changed_regions(el, cand, q, lv, params.skip_unreachable, extent, xs)) return false;
+  if (xs.empty()) {
+    result.contours = q.contours;
+    for (ZContour& c : result.contours)
+      for (ZJunction& j : c.junctions) j.position.z() = tip_z;
+    result.stats.unchanged = 1;
+    return true;
+  }
+  const std::uint64_t candidates = result.stats.candidates;
+  if (!splice_changed(el, std::move(xs), q, extent, tip_z, params, result)) return false;
+  result.stats.candidates = candidates;
   return true;
 }
 
