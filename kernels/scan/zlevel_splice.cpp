@@ -250,12 +250,15 @@ bool splice_contours(const std::vector<ZContour>& outer, const std::vector<ZCont
       i = j;
     }
     if (src != 0 || i != i0) return false;  // not back where it started
-    // The first segment continues the last (cut at the line where the loop was entered).
-    JSeg& last = loop.back();
-    last.seg.b = loop.front().seg.b;
-    last.seg.t1 = last.seg.t1 + (loop.front().seg.t1 - loop.front().seg.t0);
-    loop.front() = last;
-    loop.pop_back();
+    // The first segment continues the last (cut at the line where the loop was entered),
+    // unless the loop is one segment (a circle), which starts there then.
+    if (loop.size() > 1) {
+      JSeg& last = loop.back();
+      last.seg.b = loop.front().seg.b;
+      last.seg.t1 += loop.front().seg.t1 - loop.front().seg.t0;
+      loop.front() = last;
+      loop.pop_back();
+    }
     loops.push_back(std::move(loop));
   }
   for (int src = 0; src < 2; ++src)
