@@ -298,7 +298,7 @@ ZLevelResult zlevel_detail::contours_open(const OffsetElements& el,
   };
   auto deep_inside = [&](const Region& g) {
     if (!inside || (params.candidates_filtered && g.kind != RegionKind::kVertex)) return false;
-    const bool deep = region_in_known(el, *inside, g, lv, tol::kZLevelInsideDepth);
+    const bool deep = region_in_known(el, *inside, g, tol::kZLevelInsideDepth);
     st.inside_regions += deep;
     return deep;
   };

@@ -307,7 +307,7 @@ bool inside_contains(const ZLevelInside& q, const Vec2* poly, int n, double r, d
 // Whether region g lies `depth` deep inside q's polygon, tested through a hull that holds it:
 // the projected offset triangle, the capsule of radius R around the edge's shadow, the disc.
 bool region_in_known(const OffsetElements& el, const ZLevelInside& q, const Region& g,
-                     const Level& lv, double depth);
+                     double depth);
 
 // Whether x lies within tol of a polygon edge that is on the contour exactly (q.exact).
 bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol);

@@ -80,8 +80,6 @@ void fill_cells(ZLevelInside& q) {
       [](std::size_t) { return true; }, q.start, q.ids);
 }
 
-void fill_far(ZLevelInside& q);
-
 // Parity of x from the reference point of its cell: the crossings of the segment between
 // them with the cell's polygon edges (half-open at the segment's line, so that an edge pair
 // meeting on it counts once). Only for x not on an edge (callers check its clearance).
@@ -249,16 +247,7 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
     }
     fill_cells(q);
   }
-  fill_far(q);
-  if (higher.stats.repaired_links == 0) q.contours = higher.contours;
-  return q;
-}
-
-namespace {
-
-// Chebyshev distance in cells to the nearest cell with an edge (breadth-first, 8 neighbours).
-void fill_far(ZLevelInside& q) {
-  const std::size_t cells = std::size_t(q.nx) * q.ny;
+  // Chebyshev distance in cells to the nearest cell with an edge (breadth-first, 8 neighbours).
   q.far.assign(cells, 255);
   std::vector<std::uint32_t> front, next;
   for (std::uint32_t c = 0; c < cells; ++c)
@@ -282,7 +271,11 @@ void fill_far(ZLevelInside& q) {
     }
     front.swap(next);
   }
+  if (higher.stats.repaired_links == 0) q.contours = higher.contours;
+  return q;
 }
+
+namespace {
 
 // Quick answer from the far field: 1 when the shape (hull within `reach` of poly[0], grown by
 // r) lies `margin` deep inside, 0 when it lies wholly outside, -1 when the edges must decide.
@@ -298,28 +291,40 @@ int far_answer(const ZLevelInside& q, const Vec2& p, double reach, double margin
 
 }  // namespace
 
+namespace {
+
+// The shape that holds the region of facet or edge `id` at any level: conv(p[0, n)) grown by
+// r (the projected offset triangle; the capsule of radius R around the edge's shadow).
+int element_hull(const OffsetElements& el, std::uint32_t id, Vec2* p, double& r) {
+  int n = 0;
+  if (id < el.facet_count()) {
+    for (const Vec3& v : el.facet_tri[id]) p[n++] = Vec2(v.x(), v.y());
+    r = 0;
+  } else {
+    for (std::uint32_t v : el.edge_vertices[id - el.facet_count()])
+      p[n++] = Vec2(el.points[v].x(), el.points[v].y());
+    r = el.radius;
+  }
+  return n;
+}
+
+}  // namespace
+
 void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t> ids,
                         const ZLevelInside& q, std::vector<std::uint32_t>& out) {
   if (q.empty()) {
     out.insert(out.end(), ids.begin(), ids.end());
     return;
   }
-  const auto nf = el.facet_count();
   const double depth = tol::kZLevelInsideDepth;
   for (std::uint32_t id : ids) {
-    Vec2 p[3];
-    int n = 0;
-    double r = 0;
-    if (id < nf) {
-      for (const Vec3& v : el.facet_tri[id]) p[n++] = Vec2(v.x(), v.y());
-    } else if (id < nf + el.edge_count()) {
-      for (std::uint32_t v : el.edge_vertices[id - nf])
-        p[n++] = Vec2(el.points[v].x(), el.points[v].y());
-      r = el.radius;
-    } else {
+    if (id >= el.facet_count() + el.edge_count()) {
       out.push_back(id);  // vertices: the kernel derives them from edges
       continue;
     }
+    Vec2 p[3];
+    double r = 0;
+    const int n = element_hull(el, id, p, r);
     if (!zlevel_detail::inside_contains(q, p, n, r, depth)) out.push_back(id);
   }
 }
@@ -327,18 +332,12 @@ void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t>
 namespace zlevel_detail {
 
 bool region_in_known(const OffsetElements& el, const ZLevelInside& q, const Region& g,
-                     const Level& lv, double depth) {
-  if (g.kind == RegionKind::kFacet) {
-    const auto& t = el.facet_tri[g.index];
-    const Vec2 p[3] = {Vec2(t[0].x(), t[0].y()), Vec2(t[1].x(), t[1].y()),
-                       Vec2(t[2].x(), t[2].y())};
-    return inside_contains(q, p, 3, 0, depth);
-  }
-  if (g.kind == RegionKind::kEdge) {
-    const Vec2 p[2] = {Vec2(g.a.x(), g.a.y()), Vec2(g.a.x() + g.d.x(), g.a.y() + g.d.y())};
-    return inside_contains(q, p, 2, lv.R, depth);
-  }
-  return inside_contains(q, &g.c, 1, g.r, depth);
+                     double depth) {
+  if (g.kind == RegionKind::kVertex) return inside_contains(q, &g.c, 1, g.r, depth);
+  Vec2 p[3];
+  double r = 0;
+  const int n = element_hull(el, g.element, p, r);
+  return inside_contains(q, p, n, r, depth);
 }
 
 bool on_exact_edge(const ZLevelInside& q, const Vec2& x, double tol) {

@@ -104,12 +104,13 @@ const Region& region_of(const std::vector<Region>& regions, std::uint32_t elemen
   return *it;
 }
 
-// Emits one closed loop of kept pieces as a contour (or an open chain, in its order, into
-// out.open_chain_contours).
+// Emits one closed loop of kept pieces as a contour into out, or, with open_out, an open
+// chain in its order into *open_out (junctions between its segments only; no area).
 void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                const std::vector<Curve>& curves, const std::vector<KeptPiece>& kept,
-               const std::vector<std::uint32_t>& seq, bool closed, ZLevelResult& out,
+               const std::vector<std::uint32_t>& seq, ZLevelResult& out,
                std::vector<ZContour>* open_out) {
+  const bool closed = open_out == nullptr;
   std::vector<RawSeg> raw;
   raw.reserve(seq.size());
   for (std::uint32_t k : seq) raw.push_back(raw_seg(curves[kept[k].curve], kept[k]));
@@ -332,10 +333,10 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
     }
     if (!closed) {
       ++out.stats.open_chains;
-      if (open_out) emit_loop(el, lv, regions, curves, kept, seq, false, out, open_out);
+      if (open_out) emit_loop(el, lv, regions, curves, kept, seq, out, open_out);
       continue;
     }
-    emit_loop(el, lv, regions, curves, kept, seq, true, out, nullptr);
+    emit_loop(el, lv, regions, curves, kept, seq, out, nullptr);
   }
   sort_contours(out.contours);
 }

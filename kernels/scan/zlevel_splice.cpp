@@ -17,16 +17,10 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// x(t) = cx + A cos t + B sin t on an arc (perp(axis) = (-axis.y, axis.x)).
-void arc_x_coefficients(const ContourSeg& s, double& A, double& B) {
-  A = s.r1 * s.axis.x();
-  B = -s.r2 * s.axis.y();
-}
-
-// The parameters of an arc in (t0, t1) where x is extreme (ascending).
+// The parameters of an arc in (t0, t1) where x is extreme (ascending): x(t) = cx + A cos t +
+// B sin t (perp(axis) = (-axis.y, axis.x)).
 std::vector<double> arc_x_extremes(const ContourSeg& s) {
-  double A, B;
-  arc_x_coefficients(s, A, B);
+  const double A = s.r1 * s.axis.x(), B = -s.r2 * s.axis.y();
   std::vector<double> out;
   if (A == 0 && B == 0) return out;
   const double phi = std::atan2(B, A);  // x' = 0 at phi + k pi
@@ -294,10 +288,6 @@ bool splice_contours(const std::vector<ZContour>& outer, const std::vector<ZCont
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 // The regions of the candidates `cand` (facets, edges and their end vertices, vertices) that
 // may make U at level lv differ from the known inside region's U (ZLevelInside): their
 // x-ranges (false when these, grown by R, cover more than half of `extent`, the known
@@ -320,7 +310,7 @@ bool changed_regions(const OffsetElements& el, const std::vector<std::uint32_t>&
   auto visit = [&](std::uint32_t id, double low) {
     if (low > zc_known) return true;
     Region g;
-    if (!build_region(el, id, lv, reach, g) || region_in_known(el, q, g, lv, q.margin)) return true;
+    if (!build_region(el, id, lv, reach, g) || region_in_known(el, q, g, q.margin)) return true;
     xs.push_back({g.box[0], g.box[2]});
     if (!(bw > 0)) return false;
     const int b0 = std::clamp(int(std::floor((g.box[0] - lv.R - extent[0]) / bw)), 0, kBins - 1);
@@ -373,7 +363,8 @@ bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>>
   double width = 0;
   for (const auto& s : slabs) width += std::min(s[1], hi) - std::max(s[0], lo);
   if (!(width < 0.4 * (hi - lo))) return false;
-  // Cut lines, each moved outwards until clear (at most R / 2).
+  // Cut lines, each moved outwards until clear (by up to 7 R / 16); inside[k]: interval k
+  // (below cuts[k], above cuts[k - 1]) is the local computation's.
   std::vector<double> cuts;
   std::vector<std::uint8_t> inside = {0};
   const double clearance = 1e-6;
@@ -399,18 +390,19 @@ bool splice_changed(const OffsetElements& el, std::vector<std::array<double, 2>>
     }
   }
   if (cuts.empty()) return false;
-  // The local candidates: those meeting a slab (between its cut lines).
+  // The local candidates: those whose box meets a local interval (closed at the cuts): the
+  // intervals from the first whose upper cut is not below x0 to the one holding x1.
   std::vector<std::uint32_t> local_cand;
   const auto& box = params.boxes->box;
-  auto in_slab = [&](float x0, float x1) {
-    for (std::size_t k = 0; k + 1 <= cuts.size(); ++k) {
-      const double a = k == 0 ? -INFINITY : cuts[k - 1], b = cuts[k];
-      if (inside[k] && x1 >= a && x0 <= b) return true;
-    }
-    return inside.back() && x1 >= cuts.back();
-  };
-  for (std::uint32_t id : params.unfiltered)
-    if (in_slab(box[id][0], box[id][2])) local_cand.push_back(id);
+  for (std::uint32_t id : params.unfiltered) {
+    const auto k0 = std::lower_bound(cuts.begin(), cuts.end(), double(box[id][0])) - cuts.begin();
+    const auto k1 = std::upper_bound(cuts.begin(), cuts.end(), double(box[id][2])) - cuts.begin();
+    for (auto k = k0; k <= k1; ++k)
+      if (inside[std::size_t(k)]) {
+        local_cand.push_back(id);
+        break;
+      }
+  }
   // Without the known region: it lies inside U, not inside the union of the local candidates
   // outside the slabs (chains may not close there).
   ZLevelParams lp = params;
