@@ -95,10 +95,16 @@ bool SegGrid::nearest_within(const Vec2& p, double limit, std::uint32_t& seg, do
 }
 
 void SegGrid::range(const Vec2& lo, const Vec2& hi, int& x0, int& y0, int& x1, int& y1) const {
-  x0 = std::clamp(static_cast<int>(std::floor((lo.x() - lo_.x()) / cell_x_)), 0, nx_ - 1);
-  y0 = std::clamp(static_cast<int>(std::floor((lo.y() - lo_.y()) / cell_y_)), 0, ny_ - 1);
-  x1 = std::clamp(static_cast<int>(std::floor((hi.x() - lo_.x()) / cell_x_)), 0, nx_ - 1);
-  y1 = std::clamp(static_cast<int>(std::floor((hi.y() - lo_.y()) / cell_y_)), 0, ny_ - 1);
+  // Clamped as doubles before the conversion: a query box may be unbounded (an infinite
+  // search limit), and converting an out-of-range double to int is undefined.
+  const auto cell = [](double v, double origin, double size, int n) {
+    const double c = std::floor((v - origin) / size);
+    return static_cast<int>(std::clamp(c, 0.0, static_cast<double>(n - 1)));
+  };
+  x0 = cell(lo.x(), lo_.x(), cell_x_, nx_);
+  y0 = cell(lo.y(), lo_.y(), cell_y_, ny_);
+  x1 = cell(hi.x(), lo_.x(), cell_x_, nx_);
+  y1 = cell(hi.y(), lo_.y(), cell_y_, ny_);
 }
 
 }  // namespace ncpath::pocket_detail
