@@ -321,4 +321,80 @@ inline constexpr double kPencilFamilyTie = 1e-9;
 // travel). Such a path is cut climb and conventional alike and keeps its orientation.
 inline constexpr double kCutSideNeutral = 1e-6;
 
+// ---- Verifier: profiles (kernels/verify/wall_distance.*, engine/verify_profile.*) ----
+
+// mm. A move that cuts into the part (wall, floor, mesh, bottom) by more than this fails
+// the job's verification (status failed_verification).
+inline constexpr double kVerifyGouge = 1e-6;
+
+// mm. Resolution of the verifier's distances to NURBS walls: a Bezier piece is subdivided
+// until its control polygon lies within half of this of its chord, and the distance reported
+// is a lower bound at most this below the truth (conservative: never misses a gouge).
+inline constexpr double kVerifyResolution = 1e-7;
+
+// mm. The verifier looks for walls up to this far beyond the tool radius plus stock;
+// clearances larger than this are not reported (min_clearance stays +inf).
+inline constexpr double kVerifyReach = 1.0;
+
+// Dimensionless (times the ball radius). The verifier cuts a pocket3d bottom into Bezier
+// pieces no larger than this: no larger than the ball, so that each piece's distance to a
+// move has one minimum for its Newton iteration (bottoms bend far less than the ball).
+inline constexpr double kVerifyPiece = 1.0;
+
+// Parameter units (mm of travel for the segment parameter). The verifier's Newton iteration
+// on a bottom piece stops when a step moves the parameters less than this (and its damping
+// never falls below it): far below any distance the verifier reports.
+inline constexpr double kVerifyNewtonStep = 1e-13;
+
+// mm. The verifier's plan inversion (the bottom's height over a grid point) has converged
+// when the surface point lies this close to the grid point in plan.
+inline constexpr double kVerifyPlanResidual = 1e-11;
+
+// mm. Spacing of the plan grid on which the verifier measures a pocket3d path's scallop.
+inline constexpr double kVerifyScallopGrid = 0.5;
+
+// ---- Verifier: swept tool vs meshes (kernels/verify/swept_tool.*, engine/verify_mesh.*) ----
+
+// mm. Contact tolerance of the gouge verifier: a triangle that the swept tool (with stock)
+// overlaps by at most this much, measured as Euclidean distance, is touched, not cut. It
+// makes "cuts into" a decision that rounding (~1e-12 mm) cannot flip on exact contacts,
+// e.g. a cutter sliding along a vertical wall at exactly its radius.
+inline constexpr double kVerifyContact = 1e-9;
+
+// mm. A tool whose corner radius plus stock is below this (a flat cutter, with or without a
+// hair of stock) is verified as sharp: a cylinder of radius R + stock from stock below the tip,
+// whose gouge is computed in closed form. GJK cannot be used there: it resolves distances to
+// the curved rim only to ~size * sqrt(machine epsilon) ~ 1e-7 mm when the tool touches, and a
+// sharp tool's decisions are all made at distance ~0. The sharp body is larger than the true
+// one by at most 0.42 times this, at the rim only (conservative).
+inline constexpr double kVerifySharpCorner = 1e-4;
+
+// Dimensionless. A candidate point of the sharp-tool gouge (swept_tool.cpp) whose horizontal
+// distance from the tool axis exceeds the radius by at most this fraction is on the rim:
+// computed crossings of the rim carry rounding. Moves the gouge by at most this times R times
+// the triangle's slope.
+inline constexpr double kSharpRimSlack = 1e-12;
+
+// mm. GJK distance (swept_tool.cpp) stops when its support-plane lower bound is within this
+// of the distance of its current pair of points. Far below kVerifyContact.
+inline constexpr double kGjkDistance = 1e-11;
+
+// Dimensionless. GJK also stops when a step shortens its squared distance by less than this
+// fraction: progress at the level of rounding (a tiny distance to a large flat face of the
+// Minkowski difference, where the support plane's tilt keeps the lower bound loose).
+inline constexpr double kGjkProgress = 1e-13;
+
+// Count. GJK iteration cap: polytopes converge in a few iterations, the cutter's round rim in
+// about 20 (the error on a curved support shrinks ~4x per iteration); the bounds stay valid
+// when the cap is hit.
+inline constexpr int kGjkMaxIterations = 96;
+
+// mm. Default resolution of the verifier's gouge depth (vertical lift): the reported lift
+// clears the triangle and is at most this above the smallest lift that does.
+inline constexpr double kGougeResolution = 1e-9;
+
+// Count. Cap on the GJK evaluations of one lift search (Newton from above, secant from
+// below, bisection otherwise); when hit, the returned lift still clears the triangle.
+inline constexpr int kLiftMaxSteps = 120;
+
 }  // namespace ncpath::tol

@@ -1,0 +1,52 @@
+#pragma once
+// The last stage of the mesh operations whose CL points are exact but whose chords are not
+// (raster, pencil, fillet): every straight move between consecutive points is checked with
+// the exact swept tool (engine/verify_mesh.hpp), and a move that would cut into the part is
+// replaced by a lift-over: straight up at its lower end, across at the height that clears
+// the part, straight down at the other end. The CL points themselves are kept.
+//
+// Why the vertical moves are safe: every point is a drop-cutter point, the highest height at
+// which the tool touches the part over that xy; the tool (shank included) is free anywhere
+// above it. The move across is raised by the exact lift that clears it (conservative by the
+// lift's resolution). A step up a wall (a raster line reaching a part from the floor) thus
+// becomes a climb and a move over the edge instead of a chord through the part.
+//
+// Sharing: this stage and the job's verifier use the same swept-tool kernel
+// (kernels/verify/swept_tool.hpp, tested against the drop-cutter as an independent oracle);
+// the verifier's own instance re-checks every move afterwards.
+#include <cstdint>
+
+#include "engine/cl_chunk.hpp"
+#include "engine/verify_mesh.hpp"
+
+namespace ncpath {
+
+struct ChordGuardStats {
+  std::uint64_t moves = 0;         // moves checked
+  std::uint64_t lifted = 0;        // moves replaced by a lift-over
+  std::uint64_t points_added = 0;  // CL points inserted
+  double max_lift = 0;             // mm, largest height a lift-over rose above its higher end
+  void add(const ChordGuardStats& o);
+};
+
+// `in` with every gouging move replaced by its lift-over (paths keep their kinds; inserted
+// points have contact kind 0). Parallel over paths; the same bytes for any thread count.
+ClChunk guard_chords(const MeshVerifier& mesh, const SweptTool& tool, const ClChunk& in,
+                     ChordGuardStats& stats);
+
+// The stage for one job: the mesh's own swept-tool index, the tool, and the running stats.
+class ChordGuard {
+ public:
+  ChordGuard(const TriangleMesh& mesh, const Cutter& cutter, double stock = 0);
+  ClChunk apply(const ClChunk& in);
+  const ChordGuardStats& stats() const { return stats_; }
+  double seconds() const { return seconds_; }  // in apply, so far
+
+ private:
+  MeshVerifier mesh_;
+  SweptTool tool_;
+  ChordGuardStats stats_;
+  double seconds_ = 0;
+};
+
+}  // namespace ncpath

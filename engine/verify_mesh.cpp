@@ -1,0 +1,417 @@
+#include "engine/verify_mesh.hpp"
+
+#include <Eigen/Geometry>  // cross
+
+#include <algorithm>
+#include <cmath>
+
+#include "engine/parallel.hpp"
+#include "kernels/geom/tolerance.hpp"
+
+namespace ncpath {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A facet as the checks want it: vertices, plane, xy box and z range, first grid cell.
+struct FacetRec {
+  Vec3 p[3];
+  Vec3 n;             // unit normal; zero for a degenerate facet (no plane bound)
+  double d_lo, d_hi;  // the vertices' n . p: the facet lies in this slab (rounding)
+  double lo_x, lo_y, hi_x, hi_y, z_lo, z_hi;
+  std::int32_t ci = 0, cj = 0;  // grid cell of the box's low corner
+  std::uint32_t source;         // index into mesh.facets
+};
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+double orient(const Vec2& a, const Vec2& b, const Vec2& c) { return cross2(b - a, c - a); }
+
+double dist2_point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double den = ab.squaredNorm();
+  const double t = den > 0 ? std::clamp((p - a).dot(ab) / den, 0.0, 1.0) : 0.0;
+  return (a + t * ab - p).squaredNorm();
+}
+
+// Closed segments ab and cd meet (collinear ones are taken to meet: only a weaker bound).
+bool segments_meet(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double d1 = orient(c, d, a), d2 = orient(c, d, b);
+  const double d3 = orient(a, b, c), d4 = orient(a, b, d);
+  return d1 * d2 <= 0 && d3 * d4 <= 0;
+}
+
+// Distance in xy between the segment ab and the triangle t (0 when they overlap): a lower
+// bound of the horizontal distance from the tool axis to any point of the facet.
+double xy_distance(const Vec2& a, const Vec2& b, const Vec2 t[3]) {
+  const double o0 = orient(t[0], t[1], a), o1 = orient(t[1], t[2], a), o2 = orient(t[2], t[0], a);
+  if ((o0 >= 0 && o1 >= 0 && o2 >= 0) || (o0 <= 0 && o1 <= 0 && o2 <= 0)) return 0;
+  double d2 = kInf;
+  for (int k = 0; k < 3; ++k) {
+    const Vec2& c = t[k];
+    const Vec2& d = t[(k + 1) % 3];
+    if (segments_meet(a, b, c, d)) return 0;
+    d2 = std::min({d2, dist2_point_segment(a, c, d), dist2_point_segment(b, c, d),
+                   dist2_point_segment(c, a, b)});
+  }
+  return std::sqrt(d2);
+}
+
+// Better of two (value, move) pairs for "smallest value, then lowest move".
+bool closer(double a, std::uint64_t move_a, double b, std::uint64_t move_b) {
+  return a < b || (a == b && move_a < move_b);
+}
+
+bool worse(const MoveViolation& a, const MoveViolation& b) {
+  return a.amount > b.amount || (a.amount == b.amount && a.move < b.move);
+}
+
+void keep_worst(std::vector<MoveViolation>& v, std::size_t capacity) {
+  std::sort(v.begin(), v.end(), worse);
+  if (v.size() > capacity) v.resize(capacity);
+}
+
+}  // namespace
+
+struct MeshVerifier::Impl {
+  std::vector<FacetRec> facets;  // ordered by first grid cell (row-major): cache locality
+  std::uint64_t skipped = 0;
+  double x0 = 0, y0 = 0, cell = 1;
+  std::int32_t nx = 0, ny = 0;
+  // A facet in one cell, with what the traversal tests before touching the facet: its first
+  // cell (visit once) and its top rounded up to float (below the tool's box: skip).
+  struct Entry {
+    std::uint32_t facet;  // index into facets
+    std::uint16_t ci, cj;
+    float z_hi;
+  };
+  std::vector<std::uint32_t> cell_start;  // nx * ny + 1 offsets into entries (CSR)
+  std::vector<Entry> entries;
+
+  std::int32_t cell_x(double x) const { return clamp_cell((x - x0) / cell, nx); }
+  std::int32_t cell_y(double y) const { return clamp_cell((y - y0) / cell, ny); }
+  static std::int32_t clamp_cell(double u, std::int32_t n) {
+    if (!(u > 0)) return 0;  // also NaN
+    return u >= n - 1 ? n - 1 : static_cast<std::int32_t>(u);
+  }
+
+  void build(const TriangleMesh& mesh);
+  void build_grid();
+  template <class Visit>
+  void visit(const Vec3& lo, const Vec3& hi, Visit&& visit) const;
+};
+
+void MeshVerifier::Impl::build(const TriangleMesh& mesh) {
+  facets.reserve(mesh.facets.size());
+  for (std::size_t i = 0; i < mesh.facets.size(); ++i) {
+    FacetRec f;
+    bool finite = true;
+    for (int k = 0; k < 3; ++k) {
+      f.p[k] = mesh.vertices[mesh.facets[i][k]];
+      finite = finite && f.p[k].allFinite();
+    }
+    if (!finite) {
+      ++skipped;
+      continue;
+    }
+    const Vec3 n = (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
+    const double len = n.norm();
+    f.n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+    f.d_lo = std::min({f.n.dot(f.p[0]), f.n.dot(f.p[1]), f.n.dot(f.p[2])});
+    f.d_hi = std::max({f.n.dot(f.p[0]), f.n.dot(f.p[1]), f.n.dot(f.p[2])});
+    f.lo_x = std::min({f.p[0].x(), f.p[1].x(), f.p[2].x()});
+    f.hi_x = std::max({f.p[0].x(), f.p[1].x(), f.p[2].x()});
+    f.lo_y = std::min({f.p[0].y(), f.p[1].y(), f.p[2].y()});
+    f.hi_y = std::max({f.p[0].y(), f.p[1].y(), f.p[2].y()});
+    f.z_lo = std::min({f.p[0].z(), f.p[1].z(), f.p[2].z()});
+    f.z_hi = std::max({f.p[0].z(), f.p[1].z(), f.p[2].z()});
+    f.source = static_cast<std::uint32_t>(i);
+    facets.push_back(f);
+  }
+  build_grid();
+}
+
+// Cells about the size of a facet (and about as many as facets), at most 4096 a side (cell
+// indices fit 16 bits).
+void MeshVerifier::Impl::build_grid() {
+  if (facets.empty()) return;
+  double lx = kInf, ly = kInf, hx = -kInf, hy = -kInf, extent = 0;
+  for (const FacetRec& f : facets) {
+    lx = std::min(lx, f.lo_x);
+    ly = std::min(ly, f.lo_y);
+    hx = std::max(hx, f.hi_x);
+    hy = std::max(hy, f.hi_y);
+    extent += std::max(f.hi_x - f.lo_x, f.hi_y - f.lo_y);
+  }
+  const double w = hx - lx, h = hy - ly, n = static_cast<double>(facets.size());
+  cell = std::max({extent / n, std::sqrt(w * h / n), w / 4096, h / 4096});
+  if (!(cell > 0)) cell = 1;
+  x0 = lx;
+  y0 = ly;
+  nx = static_cast<std::int32_t>(w / cell) + 1;
+  ny = static_cast<std::int32_t>(h / cell) + 1;
+  for (FacetRec& f : facets) {
+    f.ci = cell_x(f.lo_x);
+    f.cj = cell_y(f.lo_y);
+  }
+  std::stable_sort(facets.begin(), facets.end(), [](const FacetRec& a, const FacetRec& b) {
+    return a.cj != b.cj ? a.cj < b.cj : a.ci < b.ci;
+  });
+  // Count, scan, fill (facets in their order within each cell).
+  std::vector<std::uint32_t> count(static_cast<std::size_t>(nx) * ny, 0);
+  auto each_cell = [&](const FacetRec& f, auto&& body) {
+    const std::int32_t i1 = cell_x(f.hi_x), j1 = cell_y(f.hi_y);
+    for (std::int32_t j = f.cj; j <= j1; ++j)
+      for (std::int32_t i = f.ci; i <= i1; ++i) body(static_cast<std::size_t>(j) * nx + i);
+  };
+  for (const FacetRec& f : facets) each_cell(f, [&](std::size_t c) { ++count[c]; });
+  cell_start.assign(count.size() + 1, 0);
+  par::exclusive_scan<std::uint32_t, std::uint32_t>(count, cell_start);
+  entries.resize(cell_start.back());
+  std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
+  for (std::size_t k = 0; k < facets.size(); ++k) {
+    const FacetRec& f = facets[k];
+    float z_hi = static_cast<float>(f.z_hi);
+    if (z_hi < f.z_hi) z_hi = std::nextafter(z_hi, std::numeric_limits<float>::infinity());
+    const Entry e{static_cast<std::uint32_t>(k), static_cast<std::uint16_t>(f.ci),
+                  static_cast<std::uint16_t>(f.cj), z_hi};
+    each_cell(f, [&](std::size_t c) { entries[fill[c]++] = e; });
+  }
+}
+
+// Calls visit(facet) once for every facet whose box meets [lo, hi], in grid order. A facet
+// is met in every shared cell but visited only in the first one (its low corner clamped to
+// the query's cells).
+template <class Visit>
+void MeshVerifier::Impl::visit(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+  if (facets.empty()) return;
+  const std::int32_t i0 = cell_x(lo.x()), i1 = cell_x(hi.x());
+  const std::int32_t j0 = cell_y(lo.y()), j1 = cell_y(hi.y());
+  for (std::int32_t j = j0; j <= j1; ++j)
+    for (std::int32_t i = i0; i <= i1; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * nx + i;
+      for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+        const Entry& e = entries[k];
+        if (std::max<std::int32_t>(e.ci, i0) != i || std::max<std::int32_t>(e.cj, j0) != j ||
+            e.z_hi < lo.z())
+          continue;  // seen in an earlier cell, or below the box
+        const FacetRec& f = facets[e.facet];
+        if (f.hi_x < lo.x() || f.lo_x > hi.x() || f.hi_y < lo.y() || f.lo_y > hi.y() ||
+            f.z_hi < lo.z() || f.z_lo > hi.z())
+          continue;
+        visit(f);
+      }
+    }
+}
+
+MeshVerifier::MeshVerifier(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
+  impl_->build(mesh);
+}
+
+MeshVerifier::~MeshVerifier() = default;
+
+std::uint64_t MeshVerifier::facet_count() const { return impl_->facets.size(); }
+std::uint64_t MeshVerifier::skipped() const { return impl_->skipped; }
+
+namespace {
+
+// One move's scan over its candidate facets: the gouge (kept as the floor of later facets)
+// and, for rapids, the clearance. Each facet is first tested with exact cheap bounds.
+struct MoveScan {
+  const SweptTool& tool;
+  Vec3 p0, p1;
+  Vec2 a, b;       // the move in xy
+  double foot;     // R + stock: horizontal reach of the body from the axis, mm
+  double low_tip;  // lowest tip of the move, mm
+  Cutter profile;  // lower surface of the body, tip at tip - stock
+  double floor0;   // gouges at most this are not reported, mm
+  double cap;      // clearance cap (0: no clearance), mm
+  MeshVerifier::MoveCheck out;
+
+  void facet(const FacetRec& f) {
+    ++out.candidates;
+    const Vec2 t[3] = {
+        {f.p[0].x(), f.p[0].y()}, {f.p[1].x(), f.p[1].y()}, {f.p[2].x(), f.p[2].y()}};
+    const double dxy = xy_distance(a, b, t);
+    if (dxy <= foot) gouge(f, dxy);
+    if (cap > 0 && dxy <= foot + cap) clearance(f, dxy);
+  }
+
+  void gouge(const FacetRec& f, double dxy) {
+    const double floor = std::max(floor0, out.gouge);
+    // Raised by `floor` the body is above the facet (its bottom over the facet's footprint
+    // is no lower than this), or beyond its plane: the gouge is at most the floor.
+    const double bottom = low_tip + floor - tool.stock + profile_height(profile, dxy);
+    if (f.z_hi <= bottom) return;
+    const Vec3 up(0, 0, floor);
+    if (f.n != Vec3::Zero() && swept_plane_gap(tool, p0 + up, p1 + up, f.n, f.d_lo, f.d_hi) >= 0)
+      return;
+    const SweptGouge g = swept_gouge_above(tool, p0, p1, f.p[0], f.p[1], f.p[2], floor);
+    out.gjk_calls += g.gjk_calls;
+    if (g.gouge > out.gouge) {
+      out.gouge = g.gouge;
+      out.gouge_facet = f.source;
+    }
+  }
+
+  void clearance(const FacetRec& f, double dxy) {
+    double bound = std::max(dxy - foot, low_tip - tool.stock - f.z_hi);
+    if (f.n != Vec3::Zero())
+      bound = std::max(bound, swept_plane_gap(tool, p0, p1, f.n, f.d_lo, f.d_hi));
+    if (bound >= out.clearance || bound >= cap) return;
+    ++out.gjk_calls;
+    const double gap = swept_gap(tool, p0, p1, f.p[0], f.p[1], f.p[2]);
+    if (gap < out.clearance && gap < cap) {
+      out.clearance = gap;
+      out.clearance_facet = f.source;
+    }
+  }
+};
+
+}  // namespace
+
+MeshVerifier::MoveCheck MeshVerifier::check_move(const SweptTool& tool_in, const Vec3& p0,
+                                                 const Vec3& p1, double gouge_floor,
+                                                 double clearance_cap) const {
+  SweptTool tool = tool_in;
+  tool.stock = std::max(0.0, tool.stock);
+  tool.shank = std::max(0.0, tool.shank);
+  const double s = tool.stock, cap = std::max(0.0, clearance_cap);
+  MoveScan scan{tool,
+                p0,
+                p1,
+                Vec2(p0.x(), p0.y()),
+                Vec2(p1.x(), p1.y()),
+                tool.cutter.radius + s,
+                std::min(p0.z(), p1.z()),
+                swept_profile(tool),
+                std::max(0.0, gouge_floor),
+                cap,
+                {}};
+  // The swept body (grown by stock) lies in [lo, hi] without the cap: up to 2r + shank + s
+  // above the highest tip (ball part on top of the shank).
+  const double reach = scan.foot + cap, top = 2 * tool.cutter.corner_radius + tool.shank + s;
+  const Vec3 lo = p0.cwiseMin(p1) - Vec3(reach, reach, s + cap);
+  const Vec3 hi = p0.cwiseMax(p1) + Vec3(reach, reach, top + cap);
+  impl_->visit(lo, hi, [&](const FacetRec& f) { scan.facet(f); });
+  return scan.out;
+}
+
+void merge(MeshVerifyReport& into, const MeshVerifyReport& from) {
+  if (from.rapid_moves > 0 &&
+      (into.rapid_moves == 0 || closer(from.min_rapid_clearance, from.closest_rapid.move,
+                                       into.min_rapid_clearance, into.closest_rapid.move))) {
+    into.min_rapid_clearance = from.min_rapid_clearance;
+    into.closest_rapid = from.closest_rapid;
+  }
+  into.moves += from.moves;
+  into.rapid_moves += from.rapid_moves;
+  into.gouging_moves += from.gouging_moves;
+  into.unsafe_rapids += from.unsafe_rapids;
+  into.candidates += from.candidates;
+  into.gjk_calls += from.gjk_calls;
+  into.max_gouge = std::max(into.max_gouge, from.max_gouge);
+  into.worst_capacity = std::max(into.worst_capacity, from.worst_capacity);
+  into.worst.insert(into.worst.end(), from.worst.begin(), from.worst.end());
+  keep_worst(into.worst, into.worst_capacity);
+  if (into.error.empty()) into.error = from.error;
+}
+
+namespace {
+
+// The chunk's paths as move ranges: path k holds moves [move_start[k], move_start[k + 1])
+// starting at point point_start[k].
+struct MoveIndex {
+  std::vector<std::uint64_t> move_start, point_start;
+  std::string error;
+};
+
+MoveIndex index_moves(const ClChunk& cl) {
+  MoveIndex m;
+  const std::size_t paths = cl.path_sizes.size();
+  m.move_start.assign(paths + 1, 0);
+  m.point_start.assign(paths + 1, 0);
+  for (std::size_t k = 0; k < paths; ++k) {
+    const std::uint64_t n = cl.path_sizes[k];
+    m.point_start[k + 1] = m.point_start[k] + n;
+    m.move_start[k + 1] = m.move_start[k] + (n > 0 ? n - 1 : 0);
+  }
+  if (cl.path_kinds.size() != paths || cl.xyz.size() != 3 * m.point_start[paths]) {
+    m.error = "CL chunk sizes disagree: " + std::to_string(cl.xyz.size()) + " coordinates, " +
+              std::to_string(paths) + " path sizes (" + std::to_string(m.point_start[paths]) +
+              " points), " + std::to_string(cl.path_kinds.size()) + " path kinds";
+    m.move_start.assign(1, 0);
+  }
+  return m;
+}
+
+Vec3 point_at(const ClChunk& cl, std::uint64_t i) {
+  return {cl.xyz[3 * i], cl.xyz[3 * i + 1], cl.xyz[3 * i + 2]};
+}
+
+}  // namespace
+
+MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter, const ClChunk& cl,
+                              const MeshVerifyParams& params, std::uint64_t first_move_index,
+                              std::uint32_t first_path_index) {
+  MeshVerifyReport report;
+  report.worst_capacity = static_cast<std::size_t>(std::max(0, params.worst));
+  const MoveIndex index = index_moves(cl);
+  report.error = index.error;
+  const SweptTool tool{cutter, params.shank, params.stock};
+  const double cap = params.clearance_cap > 0 ? params.clearance_cap : 1.0;
+
+  constexpr std::uint64_t kBlock = 256;  // moves per task and per partial report
+  const std::uint64_t moves = index.move_start.back();
+  const std::size_t blocks = static_cast<std::size_t>((moves + kBlock - 1) / kBlock);
+  std::vector<MeshVerifyReport> part(blocks);
+  par::for_each(blocks, 1, [&](std::size_t bi) {
+    MeshVerifyReport& out = part[bi];
+    out.worst_capacity = report.worst_capacity;
+    const std::uint64_t m0 = bi * kBlock, m1 = std::min(moves, m0 + kBlock);
+    std::size_t k = std::upper_bound(index.move_start.begin(), index.move_start.end(), m0) -
+                    index.move_start.begin() - 1;
+    for (std::uint64_t m = m0; m < m1; ++m) {
+      while (m >= index.move_start[k + 1]) ++k;
+      const std::uint64_t i = index.point_start[k] + (m - index.move_start[k]);
+      MoveViolation v;
+      v.move = first_move_index + m;
+      v.path = first_path_index + static_cast<std::uint32_t>(k);
+      v.from = point_at(cl, i);
+      v.to = point_at(cl, i + 1);
+      if (!v.from.allFinite() || !v.to.allFinite()) {
+        if (out.error.empty())
+          out.error = "move " + std::to_string(v.move) + " has a non-finite point";
+        continue;
+      }
+      const bool rapid = cl.path_kinds[k] == static_cast<std::uint8_t>(PathKind::kRapid);
+      const MeshVerifier::MoveCheck c = verifier.check_move(
+          tool, v.from, v.to, std::max(0.0, params.gouge_tolerance), rapid ? cap : 0);
+      ++out.moves;
+      out.candidates += c.candidates;
+      out.gjk_calls += c.gjk_calls;
+      if (c.gouge > 0) {
+        ++out.gouging_moves;
+        out.max_gouge = std::max(out.max_gouge, c.gouge);
+        v.amount = c.gouge;
+        v.facet = c.gouge_facet;
+        out.worst.push_back(v);
+      }
+      if (!rapid) continue;
+      const double clearance = std::min(c.clearance, cap);
+      if (++out.rapid_moves == 1 ||
+          closer(clearance, v.move, out.min_rapid_clearance, out.closest_rapid.move)) {
+        out.min_rapid_clearance = clearance;
+        out.closest_rapid = v;
+        out.closest_rapid.amount = clearance;
+        out.closest_rapid.facet = c.clearance_facet;
+      }
+      if (clearance < params.safe_clearance) ++out.unsafe_rapids;
+    }
+    keep_worst(out.worst, out.worst_capacity);
+  });
+  for (const MeshVerifyReport& p : part) merge(report, p);
+  return report;
+}
+
+}  // namespace ncpath
