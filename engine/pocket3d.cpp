@@ -16,6 +16,7 @@
 #include "kernels/pocket/offset.hpp"
 #include "kernels/pocket/seg_grid.hpp"
 #include "kernels/surface/surface_drop.hpp"
+#include "kernels/verify/surface_distance.hpp"
 
 namespace ncpath {
 
@@ -271,6 +272,61 @@ std::string validate(const Pocket3dParams& p) {
   return "";
 }
 
+namespace {
+
+// The smallest lift h (within a tenth of the verifier's gouge tolerance, never below) that
+// keeps the ball (centres a + h z, b + h z) within half that tolerance of R from the bottom
+// or farther; 0 when the move already does.
+double exact_lift(const SurfaceProbe& probe, const Vec3& a, const Vec3& b, double R) {
+  const Vec3 up(0, 0, R);
+  const double need = R - 0.5 * tol::kVerifyGouge;
+  const auto gap = [&](double h) {
+    const Vec3 lift(0, 0, h);
+    return probe.segment_distance(a + up + lift, b + up + lift, R + 1) - need;
+  };
+  const double g0 = gap(0);
+  if (g0 >= 0) return 0;
+  double lo = 0, hi = -g0;
+  while (gap(hi) < 0) {
+    lo = hi;
+    hi *= 2;
+  }
+  while (hi - lo > 0.1 * tol::kVerifyGouge) {
+    const double mid = 0.5 * (lo + hi);
+    (gap(mid) >= 0 ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+// The chords between the CL points, checked against the exact bottom (the planner's own check
+// samples the drop curve): a chord that comes closer than R is raised at both ends by the
+// exact lift, until none does. Adds each point's lift to raised[i].
+void lift_exact(const SurfaceProbe& probe, std::vector<ClPt>& pts, double R,
+                std::vector<double>& raised) {
+  std::vector<std::uint8_t> check(pts.size() > 0 ? pts.size() - 1 : 0, 1);
+  for (int round = 0; round < 8; ++round) {
+    std::vector<double> lift(check.size(), 0);
+    par::for_each(lift.size(), 16, [&](std::size_t i) {
+      if (check[i]) lift[i] = exact_lift(probe, pts[i].cl, pts[i + 1].cl, R);
+    });
+    // Only the chords next to a raised point need another look.
+    std::fill(check.begin(), check.end(), 0);
+    bool any = false;
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const double up = std::max(i > 0 ? lift[i - 1] : 0.0, i < lift.size() ? lift[i] : 0.0);
+      if (up <= 0) continue;
+      any = true;
+      pts[i].cl.z() += up;
+      raised[i] += up;
+      if (i > 0) check[i - 1] = 1;
+      if (i < check.size()) check[i] = 1;
+    }
+    if (!any) break;
+  }
+}
+
+}  // namespace
+
 Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurface& bottom,
                            const Pocket3dParams& p) {
   if (const std::string m = validate(p); !m.empty()) throw std::invalid_argument(m);
@@ -334,8 +390,10 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
   if (!std::isfinite(st.min_interval)) st.min_interval = 0;
 
   Stopwatch clock;
-  // Walls and islands as lines and arcs: no chord may come closer than R + stock (less the
-  // profile tolerance both the offsets and these shapes are within, on NURBS curves).
+  // Walls and islands as lines and arcs (NURBS within half the tolerance): no chord may come
+  // closer than R + stock to them, plus half the tolerance where they approximate NURBS
+  // curves, so that chords keep R + stock from the true walls (one-sided: the margin is on
+  // the free side; the first level lies farther, see engine/pocket_offset.hpp).
   std::vector<Seg2> wall_segs;
   bool nurbs = false;
   for (const Region& g : regions) {
@@ -347,8 +405,9 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
     }
   }
   const pocket_detail::SegGrid walls(wall_segs, p.tool_radius);
-  const double wall_limit =
-      p.tool_radius + p.stock - (nurbs ? 2 * p.tolerance : 0) - tol::kOffsetValid;
+  const double wall_limit = p.tool_radius + p.stock + (nurbs ? 0.5 * p.tolerance : 0);
+  // (The first level lies 2 tolerances farther in such regions: chords along it may sag.)
+  const SurfaceProbe probe(bottom, tol::kVerifyPiece * p.tool_radius);
   pocket_stage::ChunkBuilder b(out.cl, st.cut_length, st.link_length, st.rapid_length);
   std::vector<double> payload;
   b.set_payload(&payload, 6);
@@ -387,15 +446,20 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
         deficit.push_back(cls[k2].deficit[i]);
       }
     }
+    std::vector<double> raised(pts.size(), 0);
     for (std::size_t i = 0; i < pts.size(); ++i) {
       double lift = 0;
       if (i > 0) lift = std::max(lift, deficit[i - 1]);
       if (i < deficit.size()) lift = std::max(lift, deficit[i]);
       if (lift > tol::kExactZ) {  // rounding-level dips are no gouge
         pts[i].cl.z() += lift;
-        ++st.lifted_points;
-        st.max_lift = std::max(st.max_lift, lift);
+        raised[i] = lift;
       }
+    }
+    lift_exact(probe, pts, p.tool_radius, raised);
+    for (double r : raised) {
+      st.lifted_points += r > 0;
+      st.max_lift = std::max(st.max_lift, r);
     }
     st.cl_points += pts.size();
     // Rapid over, plunge to the first CL point, then the path.

@@ -4,6 +4,7 @@
 
 #include "engine/parallel.hpp"
 #include "kernels/curves/nurbs.hpp"
+#include "kernels/pocket/offset.hpp"
 
 namespace ncpath {
 
@@ -53,12 +54,18 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const Pocke
   const ForEach parallel = [](std::size_t n, const std::function<void(std::size_t)>& task) {
     par::for_each(n, 1, task);
   };
-  // The tolerance is split: half for NURBS offsets (Tiller-Hanson), half for their arcs.
+  // Level 1 lies wall_margin farther from every wall (the CL polylines' chords may sag that
+  // much toward it), and in a region with NURBS walls twice the tolerance farther again: the
+  // Tiller-Hanson offset and its arcs are each within half the tolerance of the truth as
+  // measured, up to about twice that in fact, either way. So every approximation falls on the
+  // free side, and the tool never comes closer than R + stock to the true walls.
   const double half_tol = 0.5 * p.tolerance;
-  const double first = p.tool_radius + p.stock;
   par::for_each(regions.size(), 1, [&](std::size_t r) {
     std::vector<const Profile*> profiles{&regions[r].boundary};
     for (const Profile& island : regions[r].islands) profiles.push_back(&island);
+    bool nurbs = false;
+    for (const Profile* pr : profiles) nurbs = nurbs || !pr->nurbs.empty();
+    const double first = p.tool_radius + p.stock + p.wall_margin + (nurbs ? 2 * p.tolerance : 0);
     std::vector<std::vector<Seg2>> shapes;
     std::vector<OffsetRuns> runs(profiles.size());
     for (std::size_t l = 0; l < profiles.size(); ++l) {
@@ -68,8 +75,6 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const Pocke
     // NURBS offsets and NURBS shapes are each within half the tolerance of the truth (the
     // Tiller-Hanson offset measures up to about twice its own budget): validation allows
     // twice the tolerance.
-    bool nurbs = false;
-    for (const Profile* pr : profiles) nurbs = nurbs || !pr->nurbs.empty();
     const double slack = nurbs ? 2 * p.tolerance : 0;
     OffsetResult level1 = offset_prepared(std::move(runs), shapes, first, nullptr, slack);
     per_region[r] =

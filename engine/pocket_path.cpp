@@ -70,6 +70,7 @@ PocketPath plan_pocket(const std::vector<Region>& regions, const PocketPathParam
   settings.stepover = p.stepover;
   settings.stock = p.stock;
   settings.tolerance = p.tolerance;
+  settings.wall_margin = p.chordal_tolerance;  // the CL polylines' chords fall inside arcs
   settings.order = p.order;
   settings.milling = p.milling;
   settings.helix_radius = p.helix_radius;

@@ -184,6 +184,7 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
   op.stepover = p.stepover;
   op.stock = p.stock;
   op.tolerance = p.tolerance;
+  op.wall_margin = p.wall_margin;
   op.half_step_last = p.half_step_last;
   out.off = offset_pocket(regions, op, p.step);
   const PocketOffsetResult& off = out.off;
@@ -221,7 +222,12 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
     std::vector<std::vector<Seg2>> first;
     for (const PocketLoop& l : off.loops)
       if (l.region == r && l.level == 1) first.push_back(l.loop.segs);
-    unreachable[r] = std::max(0.0, area - region_area(dilate(first, p.tool_radius)));
+    // Level 1 lies the one-sided margins farther from the walls (engine/pocket_offset.hpp):
+    // the band they leave is tolerance, not a corner the tool cannot reach.
+    bool nurbs = !regions[r].boundary.nurbs.empty();
+    for (const Profile& island : regions[r].islands) nurbs = nurbs || !island.nurbs.empty();
+    const double margin = p.wall_margin + (nurbs ? 2 * p.tolerance : 0);
+    unreachable[r] = std::max(0.0, area - region_area(dilate(first, p.tool_radius + margin)));
   });
   for (double a : unreachable) out.stats.unreachable_area += a;
   out.cleanups = std::move(uncut.loops);

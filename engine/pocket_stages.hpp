@@ -25,6 +25,7 @@ struct Start {
 
 struct Settings {
   double tool_radius = 3, stepover = 1.5, stock = 0, tolerance = 0.01;
+  double wall_margin = 0;        // mm: PocketOffsetParams::wall_margin
   const StepFn* step = nullptr;  // per-level steps (then stepover is only the fallback)
   bool half_step_last = false;   // with step: a half step where the full one leaves nothing
   CutOrder order = CutOrder::kOutward;

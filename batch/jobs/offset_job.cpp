@@ -19,12 +19,18 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWr
   OffsetJobSummary summary;
   const ProfileInput in = read_profile_regions(job.input, job.offset.join_tolerance, stats);
 
+  // Loop paths are polylines within the tolerance; when G-code is written they are finer
+  // than its arc tolerance, so that the G-code writer can fit the arcs back. The loops lie
+  // that much farther from the walls, so the polylines never come closer than R + stock.
+  const double chord = gcode ? std::min(job.offset.tolerance, gcode->params().arc_tolerance / 4)
+                             : job.offset.tolerance;
   Stopwatch compute_clock;
   PocketOffsetParams p;
   p.tool_radius = job.tool.radius;
   p.stepover = job.offset.stepover;
   p.stock = job.offset.stock;
   p.tolerance = job.offset.tolerance;
+  p.wall_margin = chord;
   const PocketOffsetResult res = offset_pocket(in.regions, p);
   summary.compute_s = compute_clock.seconds();
 
@@ -38,10 +44,6 @@ OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWr
   std::vector<std::uint32_t> path_sizes;
   std::vector<std::uint8_t> path_kinds;
   std::vector<Vec2> poly;
-  // Loop paths are polylines within the tolerance; when G-code is written they are finer
-  // than its arc tolerance, so that the G-code writer can fit the arcs back.
-  const double chord = gcode ? std::min(job.offset.tolerance, gcode->params().arc_tolerance / 4)
-                             : job.offset.tolerance;
   std::uint64_t segments = 0;
   for (std::size_t l = 0; l < res.loops.size(); ++l) {
     const PocketLoop& pl = res.loops[l];
