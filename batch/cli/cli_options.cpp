@@ -33,9 +33,18 @@ void add_gcode(CLI::App* app, GcodeCli& g) {
   app->add_option("--safe-z", g.safe_z,
                   "Safe height for rapid moves (mm); default: 5 above the part's top (meshes) "
                   "or 5 (pockets)");
+  app->add_option("--verify", g.verify,
+                  "Check the paths against the input (docs/cli.md): every move (full), every "
+                  "8th move (sample) or none (off)")
+      ->check(CLI::IsMember({"off", "sample", "full"}))
+      ->capture_default_str();
 }
 
 void apply_gcode(const GcodeCli& g, jobs::JobSpec& j) {
+  if (std::string e = jobs::parse_verify_mode(g.verify, j.verify); !e.empty() && j.error.empty()) {
+    j.error = "--verify " + e;
+    j.error_status = "invalid_parameter";
+  }
   if (g.path.empty()) return;
   j.gcode = g.path;
   j.gcode_params = g.params;

@@ -28,9 +28,10 @@ struct GcodeCli {
   std::string path, dialect = "linuxcnc";
   out::GcodeParams params;
   std::optional<double> safe_z;
+  std::string verify = "full";  // --verify: off, sample or full (every command has it)
 };
 
-// --gcode, --dialect, --feed, --plunge-feed, --spindle, --safe-z.
+// --gcode, --dialect, --feed, --plunge-feed, --spindle, --safe-z, and --verify.
 void add_gcode(CLI::App* app, GcodeCli& g);
 void apply_gcode(const GcodeCli& g, jobs::JobSpec& j);
 

@@ -11,6 +11,7 @@
 #include "batch/cli/cli_options.hpp"
 #include "batch/cli/mesh_op_cli.hpp"
 #include "batch/cli/progress_bar.hpp"
+#include "batch/cli/verify_cli.hpp"
 #include "batch/jobs/job_runner.hpp"
 
 using namespace ncpath;
@@ -289,7 +290,11 @@ int main(int argc, char** argv) {
   runc->add_option("--threads", batch_threads, "Override the batch file's thread count");
   runc->add_flag("-q,--quiet", batch_quiet, "No progress bar");
 
+  VerifyCli verify_cli;
+  CLI::App* verifyc = add_verify_command(app, verify_cli);
+
   CLI11_PARSE(app, argc, argv);
+  if (verifyc->parsed()) return run_verify_command(verify_cli);
 
   jobs::BatchSpec batch;
   bool quiet = false;

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "batch/jobs/job_verify.hpp"
+#include "engine/chord_guard.hpp"
 #include "engine/fillet.hpp"
 
 namespace ncpath::jobs {
@@ -63,13 +65,15 @@ FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh, ou
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 
   Stopwatch write_clock;
-  const ClChunk c = fillet_chunk(r);
+  ChordGuard guard(mesh, job.tool, job.fillet.stock);
+  const ClChunk c = guard.apply(fillet_chunk(r));
   cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
   if (gcode) gcode->append(c);
   summary.points = c.point_count();
   const double write_s = write_clock.seconds();
 
   push_fillet_stats(r.stats, stats);
+  push_guard_stats(guard, stats);
   stats.push_back({"compute_s", summary.compute_s, "s"});
   stats.push_back({"write_s", write_s, "s"});
   stats.push_back({"points", i64(summary.points), ""});

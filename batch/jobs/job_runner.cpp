@@ -7,6 +7,7 @@
 
 #include "batch/io/mesh_reader.hpp"
 #include "batch/jobs/fillet_job.hpp"
+#include "batch/jobs/job_verify.hpp"
 #include "batch/jobs/offset_job.hpp"
 #include "batch/jobs/pencil_job.hpp"
 #include "batch/jobs/pocket3d_job.hpp"
@@ -15,6 +16,7 @@
 #include "batch/jobs/scan_job.hpp"
 #include "batch/jobs/zlevel_job.hpp"
 #include "batch/output/cl_writer.hpp"
+#include "engine/chord_guard.hpp"
 #include "engine/drop_points.hpp"
 #include "engine/parallel.hpp"
 #include "engine/raster.hpp"
@@ -32,7 +34,8 @@ std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 // operation into cl.
 void run_mesh_job(const JobSpec& job, out::ClJob& cl,
                   const std::function<out::GcodeWriter*(double part_top)>& open_gcode,
-                  const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o) {
+                  const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o,
+                  std::unique_ptr<JobVerifier>& verifier) {
   Stopwatch read_clock;
   io::MeshReadResult in = io::read_mesh(job.input);
   stats.push_back({"input_format", in.stats.format, ""});
@@ -43,6 +46,13 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
   if (!tr.ok()) throw std::invalid_argument("transform." + tr.error);
   stats.push_back({"transform_scale", tr.scale, ""});
   stats.push_back({"read_s", read_clock.seconds(), "s"});
+  // The point operation is a probe: its points are answers, not moves to run.
+  if (job.verify != VerifyMode::kOff && job.operation != Operation::kDrop) {
+    Stopwatch index_clock;
+    verifier = mesh_verifier(job, in.mesh);
+    if (verifier) verifier->attach(cl);
+    stats.push_back({"verify_index_s", index_clock.seconds(), "s"});
+  }
 
   out::GcodeWriter* gcode = open_gcode(bounding_box(in.mesh).hi.z());
   RunControl control;
@@ -71,7 +81,13 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
     o.compute_s = r.compute_s;
     return;
   }
-  auto sink = [&](const ClChunk& c) {
+  // Raster chords between exact drop points are lifted where they would cut in (the drop
+  // operation's points are answers, not moves).
+  std::optional<ChordGuard> guard;
+  if (job.operation == Operation::kRaster) guard.emplace(in.mesh, job.tool);
+  auto sink = [&](const ClChunk& raw) {
+    const ClChunk guarded = guard ? guard->apply(raw) : ClChunk{};
+    const ClChunk& c = guard ? guarded : raw;
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
     if (gcode) gcode->append(c);
   };
@@ -89,7 +105,8 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
   };
   if (job.operation == Operation::kRaster) {
     const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
-    o.points = st.cut_points + st.link_points;
+    o.points = st.cut_points + st.link_points + guard->stats().points_added;
+    push_guard_stats(*guard, stats);
     common(st.facets, st.facets_degenerate, st.index_s, st.compute_s, st.sink_s);
     stats.push_back({"lines", i64(st.lines), ""});
     stats.push_back({"cut_points", i64(st.cut_points), ""});
@@ -139,6 +156,14 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
         gcode.emplace(job.gcode, gp);
         return &*gcode;
       };
+      std::unique_ptr<JobVerifier> verifier;
+      const bool profile_op = job.operation == Operation::kOffset ||
+                              job.operation == Operation::kPocket ||
+                              job.operation == Operation::kPocket3d;
+      if (profile_op && job.verify != VerifyMode::kOff) {
+        verifier = profile_verifier(job);
+        verifier->attach(cl);
+      }
       if (job.operation == Operation::kOffset) {
         const OffsetJobSummary r = run_offset_job(job, cl, open_gcode(0.0), stats);
         o.points = r.points;
@@ -152,7 +177,12 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
         o.points = r.points;
         o.compute_s = r.compute_s;
       } else {
-        run_mesh_job(job, cl, open_gcode, obs, stats, o);
+        run_mesh_job(job, cl, open_gcode, obs, stats, o, verifier);
+      }
+      std::string verify_failure;
+      if (verifier) {
+        verify_failure = verification_failure(verifier->finish(stats));
+        verifier->write_worst(cl);
       }
       if (gcode) {
         gcode->finish();
@@ -162,8 +192,8 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
         stats.push_back({"gcode_retractions", gs.retractions, ""});
       }
       stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
-      o.status = "ok";
-      o.message = open_chain_warning(stats);
+      o.status = verify_failure.empty() ? "ok" : "failed_verification";
+      o.message = verify_failure.empty() ? open_chain_warning(stats) : verify_failure;
     } catch (const io::ReadError& e) {
       fail("invalid_input", e.what());
     } catch (const std::invalid_argument& e) {

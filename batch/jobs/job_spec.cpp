@@ -20,6 +20,18 @@
 
 namespace ncpath::jobs {
 
+std::string parse_verify_mode(const std::string& text, VerifyMode& out) {
+  if (text == "off")
+    out = VerifyMode::kOff;
+  else if (text == "sample")
+    out = VerifyMode::kSample;
+  else if (text == "full")
+    out = VerifyMode::kFull;
+  else
+    return "must be \"off\", \"sample\" or \"full\" (got \"" + text + "\")";
+  return "";
+}
+
 const char* operation_name(Operation op) {
   switch (op) {
     case Operation::kRaster:
@@ -91,6 +103,9 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
   k.string("name", job.name);
   std::string op = "raster";
   k.string("operation", op);
+  std::string verify;
+  if (k.string("verify", verify))
+    if (std::string e = parse_verify_mode(verify, job.verify); !e.empty()) k.fail("verify", e);
   if (op == "raster")
     job.operation = Operation::kRaster;
   else if (op == "drop")
@@ -257,6 +272,9 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
     else
       k.fail("threads", "must be a whole number >= 0");
   }
+  std::string verify;
+  if (k.string("verify", verify))
+    if (std::string e = parse_verify_mode(verify, b.verify); !e.empty()) k.fail("verify", e);
   const toml::node* jobs = root.get("job");
   k.table("job");  // marks the key as known; its type is checked below
   k.error.clear();
@@ -271,6 +289,7 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
     if (!t)
       throw std::runtime_error(source_name + ": job " + std::to_string(i + 1) + " is not a table");
     JobSpec job = parse_job(*t, i, base_dir);
+    if (!t->contains("verify")) job.verify = b.verify;
     if (!names.insert(job.name).second) {
       job.error = "job name '" + job.name + "' is used twice";
       job.error_status = "invalid_parameter";

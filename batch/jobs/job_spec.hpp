@@ -94,6 +94,12 @@ struct Pocket3dJobParams {
 
 // Profile tolerance of a pocket3d job when none is given: well inside the plan tolerance eps,
 // so that arcs standing in for the profile's NURBS curves use little of it.
+// How much of a job's CL data the verifier checks (batch/jobs/job_verify.hpp): every move
+// (full, the default), every 8th move (sample) or nothing (off).
+enum class VerifyMode : std::uint8_t { kOff, kSample, kFull };
+// "" when text is off, sample or full (then out is set), else a message.
+std::string parse_verify_mode(const std::string& text, VerifyMode& out);
+
 inline double default_pocket3d_tolerance(double eps) { return std::min(0.01, eps / 4); }
 
 // Stepover of a pocket job when none is given: this fraction of the tool diameter.
@@ -128,6 +134,7 @@ struct JobSpec {
   // pockets). A given height below a mesh's top is rejected. Pocket jobs also use it for
   // their rapid paths in the HDF5 file, with or without G-code.
   std::optional<double> gcode_safe_z;
+  VerifyMode verify = VerifyMode::kFull;  // key `verify` (job, or the batch's default)
   std::string error;         // non-empty: the spec is invalid; status + message below
   std::string error_status;  // "invalid_parameter"
 };
@@ -135,6 +142,7 @@ struct JobSpec {
 struct BatchSpec {
   std::filesystem::path output;
   int threads = 0;
+  VerifyMode verify = VerifyMode::kFull;  // default of the jobs that do not set `verify`
   std::vector<JobSpec> jobs;
 };
 

@@ -3,6 +3,8 @@
 #include <span>
 #include <string>
 
+#include "batch/jobs/job_verify.hpp"
+#include "engine/chord_guard.hpp"
 #include "engine/pencil.hpp"
 
 namespace ncpath::jobs {
@@ -85,7 +87,8 @@ PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh, ou
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 
   Stopwatch write_clock;
-  const ClChunk c = pencil_chunk(r);
+  ChordGuard guard(mesh, job.tool, job.pencil.stock);
+  const ClChunk c = guard.apply(pencil_chunk(r));
   cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
   if (gcode) gcode->append(c);
   summary.points = c.point_count();
@@ -93,6 +96,7 @@ PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh, ou
   const double write_s = write_clock.seconds();
 
   push_pencil_stats(r.stats, stats);
+  push_guard_stats(guard, stats);
   stats.push_back({"compute_s", summary.compute_s, "s"});
   stats.push_back({"write_s", write_s, "s"});
   stats.push_back({"points", i64(summary.points), ""});

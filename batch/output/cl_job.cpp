@@ -15,7 +15,9 @@ ClJob::ClJob(std::shared_ptr<detail::FileState> file, std::uint64_t serial)
     : file_(std::move(file)), serial_(serial) {}
 
 ClJob::ClJob(ClJob&& other) noexcept
-    : file_(std::move(other.file_)), serial_(std::exchange(other.serial_, 0)) {}
+    : file_(std::move(other.file_)),
+      serial_(std::exchange(other.serial_, 0)),
+      observer_(std::move(other.observer_)) {}
 
 ClJob& ClJob::operator=(ClJob&& other) noexcept {
   if (this != &other) {
@@ -25,6 +27,7 @@ ClJob& ClJob::operator=(ClJob&& other) noexcept {
     }
     file_ = std::move(other.file_);
     serial_ = std::exchange(other.serial_, 0);
+    observer_ = std::move(other.observer_);
   }
   return *this;
 }
@@ -104,6 +107,14 @@ void ClJob::append_paths(std::span<const double> xyz, std::span<const std::uint8
     }
   }
 
+  if (observer_) {
+    ClChunk copy;
+    copy.xyz.assign(xyz.begin(), xyz.end());
+    copy.contact.assign(contact.begin(), contact.end());
+    copy.path_sizes.assign(path_sizes.begin(), path_sizes.end());
+    copy.path_kinds.assign(path_kinds.begin(), path_kinds.end());
+    observer_(copy);
+  }
   // Path by path, so that the order in which chunks fill up (and get written) depends only on
   // the data, not on how the caller split it across calls.
   try {

@@ -18,6 +18,7 @@
 // the process (every ClFile and ClJob) must happen on one thread at a time.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -148,6 +149,12 @@ class ClJob {
   // process, but a flushed one usually reads). Idempotent.
   void close();
 
+  // Called with a copy of every run of paths appended, after the checks and before it is
+  // written (the job's verifier reads the CL data this way: batch/jobs/job_verify.hpp).
+  void set_observer(std::function<void(const ClChunk&)> observer) {
+    observer_ = std::move(observer);
+  }
+
   std::int64_t points_written() const;  // n so far (including buffered)
   std::int64_t paths_written() const;   // paths so far (including buffered)
 
@@ -160,6 +167,7 @@ class ClJob {
 
   std::shared_ptr<detail::FileState> file_;  // null when moved-from
   std::uint64_t serial_ = 0;                 // which begin_job of file_ this job is
+  std::function<void(const ClChunk&)> observer_;
 };
 
 }  // namespace ncpath::out

@@ -68,9 +68,10 @@ params = { points = "xy.csv" }
   EXPECT_EQ(h5::attr_str(good, "input_sha256").size(), 64u);
   const auto offsets =
       h5::read_all<std::int64_t>(f, "/jobs/good/cl/path_offsets", H5T_NATIVE_INT64);
-  // 40 / 2 + 1 = 21 lines of 40 / 0.5 + 1 = 81 points, 20 links in between.
+  // 40 / 2 + 1 = 21 lines of 40 / 0.5 + 1 = 81 points, 20 links in between; a line that
+  // climbs onto the part gets lift-overs (chord guard) instead of chords through its edges.
   EXPECT_EQ(offsets.size(), 21u + 20u + 1u);
-  EXPECT_EQ(offsets[1], 81);
+  EXPECT_GE(offsets[1], 81);
   h5::Id missing(H5Gopen2(f, "/jobs/missing", H5P_DEFAULT));
   EXPECT_EQ(h5::attr_str(missing, "status"), "invalid_input");
   EXPECT_NE(h5::attr_str(missing, "message").find("nope.stl"), std::string::npos);
@@ -151,9 +152,12 @@ radius = 5
       h5::read_all<std::int64_t>(f, "/jobs/offset/offset/loop_level", H5T_NATIVE_INT64);
   const auto area = h5::read_all<double>(f, "/jobs/offset/offset/loop_area", H5T_NATIVE_DOUBLE);
   ASSERT_GE(level.size(), 2u);
-  // Level 1 at d = 3: the rectangle 94 x 54 and the island grown to radius 8.
+  // Level 1 at d = 3 + m (m = 0.01, the polylines' chordal tolerance, kept on the free side:
+  // docs/architecture.md): the rectangle 94 x 54 less m on every side and the island grown
+  // to radius 8 + m.
   EXPECT_EQ(level[0], 1);
-  EXPECT_NEAR(area[0] + area[1], -94.0 * 54.0 + M_PI * 64, 1e-6);
+  const double m = 0.01;
+  EXPECT_NEAR(area[0] + area[1], -(94.0 - 2 * m) * (54.0 - 2 * m) + M_PI * (8 + m) * (8 + m), 1e-6);
   const auto pts = h5::read_all<double>(f, "/jobs/offset/cl/points", H5T_NATIVE_DOUBLE);
   EXPECT_EQ(pts[2], -2.0);  // written at the depth
   const auto edges =
