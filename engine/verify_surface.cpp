@@ -7,6 +7,7 @@
 #include "engine/parallel.hpp"
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/geom/tolerance.hpp"
+#include "kernels/verify/plan_grid.hpp"
 
 namespace ncpath {
 
@@ -91,7 +92,7 @@ double lowest_over(const Vec3& c0, const Vec3& c1, const Vec2& q, double R) {
   const double phi = 0.5 * (std::sqrt(5.0) - 1);
   double a = t0, b = t1, x1 = b - phi * (b - a), x2 = a + phi * (b - a);
   double f1 = g(x1), f2 = g(x2);
-  for (int it = 0; it < 60 && b - a > 1e-12; ++it) {
+  for (int it = 0; it < 60 && b - a > tol::kVerifyNewtonStep; ++it) {
     if (f1 <= f2) {
       b = x2;
       x2 = x1;
@@ -175,46 +176,28 @@ void ScallopGrid::add(const ClChunk& cl, double top) {
     if (std::min(cl.xyz[3 * first[m] + 2], cl.xyz[3 * first[m] + 5]) < top)
       moves.push_back(static_cast<std::uint32_t>(m));
   if (moves.empty() || xy_.empty()) return;
-  // Coarse cells of 2R: each move listed in every cell its swept ball's box meets (CSR).
-  Vec2 lo = xy_[0], hi = xy_[0];
-  for (const Vec2& q : xy_) {
-    lo = lo.cwiseMin(q);
-    hi = hi.cwiseMax(q);
-  }
-  const double cell = std::max(2 * radius_, spacing_);
-  const int nx = static_cast<int>((hi.x() - lo.x()) / cell) + 1;
-  const int ny = static_cast<int>((hi.y() - lo.y()) / cell) + 1;
-  const auto ix = [&](double x) {
-    return std::clamp(static_cast<int>(std::floor((x - lo.x()) / cell)), 0, nx - 1);
-  };
-  const auto iy = [&](double y) {
-    return std::clamp(static_cast<int>(std::floor((y - lo.y()) / cell)), 0, ny - 1);
-  };
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // (cell, move)
+  // The moves on a grid of cells 2R wide, by the plan boxes of their swept balls.
+  std::vector<std::pair<Vec2, Vec2>> boxes;
   for (std::uint32_t m : moves) {
-    const Vec3 a = point(cl, first[m]), b = point(cl, first[m] + 1);
-    const Vec2 mlo = a.head<2>().cwiseMin(b.head<2>()) - Vec2::Constant(radius_);
-    const Vec2 mhi = a.head<2>().cwiseMax(b.head<2>()) + Vec2::Constant(radius_);
-    if (mhi.x() < lo.x() || mlo.x() > hi.x() || mhi.y() < lo.y() || mlo.y() > hi.y()) continue;
-    for (int j = iy(mlo.y()); j <= iy(mhi.y()); ++j)
-      for (int i = ix(mlo.x()); i <= ix(mhi.x()); ++i)
-        pairs.emplace_back(static_cast<std::uint32_t>(j * nx + i), m);
+    const Vec2 a = point(cl, first[m]).head<2>(), b = point(cl, first[m] + 1).head<2>();
+    boxes.emplace_back(a.cwiseMin(b) - Vec2::Constant(radius_),
+                       a.cwiseMax(b) + Vec2::Constant(radius_));
   }
-  std::sort(pairs.begin(), pairs.end());
-  std::vector<std::uint32_t> start(static_cast<std::size_t>(nx) * ny + 1, 0);
-  for (const auto& pr : pairs) ++start[pr.first + 1];
-  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  const PlanGrid grid(boxes, 2 * radius_);
   const Vec3 up(0, 0, radius_);
-  par::for_each(xy_.size(), 256, [&](std::size_t k) {
-    const Vec2& q = xy_[k];
-    const std::size_t c = static_cast<std::size_t>(iy(q.y()) * nx + ix(q.x()));
-    double best = lowest_[k];
-    for (std::uint32_t e = start[c]; e < start[c + 1]; ++e) {
-      const std::uint32_t m = pairs[e].second;
-      best = std::min(
-          best, lowest_over(point(cl, first[m]) + up, point(cl, first[m] + 1) + up, q, radius_));
+  par::for_ranges(xy_.size(), 256, [&](std::size_t b0, std::size_t e0) {
+    std::vector<std::uint32_t> near;
+    for (std::size_t k = b0; k < e0; ++k) {
+      const Vec2& q = xy_[k];
+      grid.query(q, q, near);
+      double best = lowest_[k];
+      for (std::uint32_t e : near) {
+        const std::uint32_t m = moves[e];
+        best = std::min(
+            best, lowest_over(point(cl, first[m]) + up, point(cl, first[m] + 1) + up, q, radius_));
+      }
+      lowest_[k] = best;
     }
-    lowest_[k] = best;
   });
 }
 

@@ -179,9 +179,10 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
       } else {
         run_mesh_job(job, cl, open_gcode, obs, stats, o, verifier);
       }
-      std::string verify_failure;
+      std::string verify_failure, bound_warning;
       if (verifier) {
         verify_failure = verification_failure(verifier->finish(stats));
+        bound_warning = verifier->bound_warning();
         verifier->write_worst(cl);
       }
       if (gcode) {
@@ -194,6 +195,8 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
       stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
       o.status = verify_failure.empty() ? "ok" : "failed_verification";
       o.message = verify_failure.empty() ? open_chain_warning(stats) : verify_failure;
+      if (verify_failure.empty() && !bound_warning.empty())
+        o.message = o.message.empty() ? bound_warning : o.message + "; " + bound_warning;
     } catch (const io::ReadError& e) {
       fail("invalid_input", e.what());
     } catch (const std::invalid_argument& e) {

@@ -1,6 +1,7 @@
 #include "batch/jobs/job_verify.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -92,9 +93,20 @@ class Pocket3dJobVerifier : public ProfileJobVerifier {
     scallop_.add(cl, top());
     return r;
   }
+  std::string bound_warning() const override {
+    if (!(max_scallop_ > bound_ + tol::kVerifyGouge)) return "";
+    std::ostringstream os;
+    os.precision(4);
+    os << "warning: the path leaves up to " << max_scallop_ << " mm of material at ("
+       << scallop_at_.x() << ", " << scallop_at_.y() << ") where scallop + delta is " << bound_
+       << " mm (stats/verify_max_scallop)";
+    return os.str();
+  }
   void bound_stats(std::vector<out::StatValue>& stats) override {
     Vec2 at = Vec2::Zero();
     const double s = scallop_.max_scallop(&at);
+    max_scallop_ = s;
+    scallop_at_ = at;
     stats.push_back({"verify_max_scallop", s, "mm"});
     stats.push_back({"verify_scallop_bound", bound_, "mm"});
     stats.push_back({"verify_scallop_x", at.x(), "mm"});
@@ -107,6 +119,8 @@ class Pocket3dJobVerifier : public ProfileJobVerifier {
   SurfaceProbe bottom_;
   ScallopGrid scallop_;
   double bound_;
+  double max_scallop_ = 0;
+  Vec2 scallop_at_ = Vec2::Zero();
 };
 
 class MeshJobVerifier : public JobVerifier {

@@ -30,6 +30,9 @@ class JobVerifier {
   const VerifyReport& finish(std::vector<out::StatValue>& stats);
   // Detaches from cl and writes the worst locations (verify/worst).
   void write_worst(out::ClJob& cl);
+  // A bound the operation promises and the path does not keep (pocket3d: the scallop), for
+  // an ok job's message; "" when kept. Valid after finish().
+  virtual std::string bound_warning() const { return ""; }
 
   static constexpr std::uint64_t kSampleEvery = 8;
 

@@ -54,52 +54,10 @@ SurfaceProbe::SurfaceProbe(const NurbsSurface& surface, double piece) : surface_
     stack.push_back(std::move(l));
     stack.push_back(std::move(r));
   }
-  // The plan grid: cells of about two pieces, every piece in the cells its box meets.
-  if (pieces_.empty()) return;
-  Vec2 lo = pieces_[0].lo.head<2>(), hi = pieces_[0].hi.head<2>();
-  for (const BezierPatch& p : pieces_) {
-    lo = lo.cwiseMin(p.lo.head<2>());
-    hi = hi.cwiseMax(p.hi.head<2>());
-  }
-  cell_ = std::max({2 * piece, (hi - lo).maxCoeff() / 1024, 1e-3});
-  origin_ = lo;
-  nx_ = static_cast<int>((hi.x() - lo.x()) / cell_) + 1;
-  ny_ = static_cast<int>((hi.y() - lo.y()) / cell_) + 1;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (std::uint32_t k = 0; k < pieces_.size(); ++k) {
-    std::vector<std::uint32_t> cells;
-    const int i0 = static_cast<int>((pieces_[k].lo.x() - lo.x()) / cell_);
-    const int i1 = static_cast<int>((pieces_[k].hi.x() - lo.x()) / cell_);
-    const int j0 = static_cast<int>((pieces_[k].lo.y() - lo.y()) / cell_);
-    const int j1 = static_cast<int>((pieces_[k].hi.y() - lo.y()) / cell_);
-    for (int j = j0; j <= std::min(j1, ny_ - 1); ++j)
-      for (int i = i0; i <= std::min(i1, nx_ - 1); ++i)
-        pairs.emplace_back(static_cast<std::uint32_t>(j * nx_ + i), k);
-  }
-  std::sort(pairs.begin(), pairs.end());
-  cell_start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
-  for (const auto& pr : pairs) ++cell_start_[pr.first + 1];
-  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
-  for (const auto& pr : pairs) cell_items_.push_back(pr.second);
-}
-
-void SurfaceProbe::candidates(const Vec2& lo, const Vec2& hi,
-                              std::vector<std::uint32_t>& out) const {
-  out.clear();
-  if (cell_items_.empty()) return;
-  const auto cell = [&](double v, double origin, int n) {
-    return static_cast<int>(std::clamp(std::floor((v - origin) / cell_), 0.0, n - 1.0));
-  };
-  const int i0 = cell(lo.x(), origin_.x(), nx_), i1 = cell(hi.x(), origin_.x(), nx_);
-  const int j0 = cell(lo.y(), origin_.y(), ny_), j1 = cell(hi.y(), origin_.y(), ny_);
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) {
-      const std::size_t c = static_cast<std::size_t>(j * nx_ + i);
-      out.insert(out.end(), cell_items_.begin() + cell_start_[c],
-                 cell_items_.begin() + cell_start_[c + 1]);
-    }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  // The plan grid: cells of about two pieces.
+  std::vector<std::pair<Vec2, Vec2>> boxes;
+  for (const BezierPatch& p : pieces_) boxes.emplace_back(p.lo.head<2>(), p.hi.head<2>());
+  grid_ = PlanGrid(boxes, 2 * piece);
 }
 
 double SurfaceProbe::piece_distance(const BezierPatch& p, const Vec3& a, const Vec3& b) const {
@@ -153,8 +111,8 @@ double SurfaceProbe::piece_distance(const BezierPatch& p, const Vec3& a, const V
 double SurfaceProbe::segment_distance(const Vec3& a, const Vec3& b, double cap) const {
   thread_local std::vector<std::uint32_t> items;
   const Vec2 grow = Vec2::Constant(cap);
-  candidates(a.head<2>().cwiseMin(b.head<2>()) - grow, a.head<2>().cwiseMax(b.head<2>()) + grow,
-             items);
+  grid_.query(a.head<2>().cwiseMin(b.head<2>()) - grow, a.head<2>().cwiseMax(b.head<2>()) + grow,
+              items);
   // Nearest boxes first: the first Newton answers bound the rest, which are then skipped.
   thread_local std::vector<std::pair<double, std::uint32_t>> order;
   order.clear();
@@ -173,7 +131,7 @@ double SurfaceProbe::segment_distance(const Vec3& a, const Vec3& b, double cap) 
 
 bool SurfaceProbe::height_at(const Vec2& xy, double& z) const {
   thread_local std::vector<std::uint32_t> items;
-  candidates(xy, xy, items);
+  grid_.query(xy, xy, items);
   for (std::uint32_t k : items) {
     const BezierPatch& p = pieces_[k];
     if (xy.x() < p.lo.x() || xy.x() > p.hi.x() || xy.y() < p.lo.y() || xy.y() > p.hi.y()) continue;

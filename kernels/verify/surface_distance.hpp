@@ -15,6 +15,7 @@
 
 #include "kernels/geom/vec.hpp"
 #include "kernels/surface/nurbs_surface.hpp"
+#include "kernels/verify/plan_grid.hpp"
 
 namespace ncpath {
 
@@ -33,14 +34,9 @@ class SurfaceProbe {
 
  private:
   double piece_distance(const BezierPatch& p, const Vec3& a, const Vec3& b) const;
-  // Pieces whose plan box meets [lo, hi] (a grid over the plan, CSR), sorted, unique.
-  void candidates(const Vec2& lo, const Vec2& hi, std::vector<std::uint32_t>& out) const;
   const NurbsSurface& surface_;
   std::vector<BezierPatch> pieces_;
-  Vec2 origin_ = Vec2::Zero();
-  double cell_ = 1;
-  int nx_ = 1, ny_ = 1;
-  std::vector<std::uint32_t> cell_start_, cell_items_;
+  PlanGrid grid_;  // over the pieces' plan boxes
 };
 
 }  // namespace ncpath

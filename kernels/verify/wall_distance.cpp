@@ -183,71 +183,21 @@ WallSet::WallSet(const std::vector<Region>& regions, double cap) : cap_(cap) {
           pieces_.push_back(std::move(b));
       }
   }
-  // The grid: cells about cap wide (at most ~4M of them); every item in the cells its box meets.
-  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  // The grid: cells about cap wide, every item in the cells its box meets.
   std::vector<std::pair<Vec2, Vec2>> boxes;
-  for (const Seg2& s : segs_) {
-    Vec2 a, b;
-    loose_bounds(s, a, b);
-    boxes.emplace_back(a, b);
+  for (const Seg2& sg : segs_) {
+    Vec2 lo, hi;
+    loose_bounds(sg, lo, hi);
+    boxes.emplace_back(lo, hi);
   }
   for (const BezierPiece& b : pieces_) boxes.emplace_back(b.lo, b.hi);
-  for (const auto& [a, b] : boxes) {
-    lo = lo.cwiseMin(a);
-    hi = hi.cwiseMax(b);
-  }
-  if (boxes.empty()) return;
-  const Vec2 ext = hi - lo;
-  cell_ = std::max({cap, ext.x() / 2048, ext.y() / 2048, 1e-3});
-  origin_ = lo;
-  nx_ = static_cast<int>(ext.x() / cell_) + 1;
-  ny_ = static_cast<int>(ext.y() / cell_) + 1;
-  for (std::uint32_t i = 0; i < boxes.size(); ++i) add_box(i, boxes[i].first, boxes[i].second);
-  std::sort(pending_.begin(), pending_.end());
-  cell_start_.assign(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_) + 1, 0);
-  for (const auto& [cell, item] : pending_) ++cell_start_[cell + 1];
-  for (std::size_t k = 1; k < cell_start_.size(); ++k) cell_start_[k] += cell_start_[k - 1];
-  for (const auto& [cell, item] : pending_) cell_items_.push_back(item);
-  pending_.clear();
-  pending_.shrink_to_fit();
-}
-
-void WallSet::add_box(std::uint32_t item, const Vec2& lo, const Vec2& hi) {
-  const auto cx = [&](double x) {
-    return std::clamp(static_cast<int>((x - origin_.x()) / cell_), 0, nx_ - 1);
-  };
-  const auto cy = [&](double y) {
-    return std::clamp(static_cast<int>((y - origin_.y()) / cell_), 0, ny_ - 1);
-  };
-  for (int j = cy(lo.y()); j <= cy(hi.y()); ++j)
-    for (int i = cx(lo.x()); i <= cx(hi.x()); ++i)
-      pending_.emplace_back(static_cast<std::uint32_t>(j * nx_ + i), item);
-}
-
-void WallSet::candidates(const Vec2& lo, const Vec2& hi, std::vector<std::uint32_t>& out) const {
-  out.clear();
-  if (cell_items_.empty()) return;
-  const auto clampi = [](double v, int n) {
-    return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(n - 1)));
-  };
-  const int i0 = clampi(std::floor((lo.x() - origin_.x()) / cell_), nx_);
-  const int i1 = clampi(std::floor((hi.x() - origin_.x()) / cell_), nx_);
-  const int j0 = clampi(std::floor((lo.y() - origin_.y()) / cell_), ny_);
-  const int j1 = clampi(std::floor((hi.y() - origin_.y()) / cell_), ny_);
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) {
-      const std::size_t c = static_cast<std::size_t>(j * nx_ + i);
-      out.insert(out.end(), cell_items_.begin() + cell_start_[c],
-                 cell_items_.begin() + cell_start_[c + 1]);
-    }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  grid_ = PlanGrid(boxes, cap);
 }
 
 double WallSet::distance(const Vec2& p0, const Vec2& p1, double resolution) const {
   thread_local std::vector<std::uint32_t> items;
   const Vec2 grow = Vec2::Constant(cap_);
-  candidates(p0.cwiseMin(p1) - grow, p0.cwiseMax(p1) + grow, items);
+  grid_.query(p0.cwiseMin(p1) - grow, p0.cwiseMax(p1) + grow, items);
   double best = cap_;
   const std::size_t nseg = segs_.size();
   for (std::uint32_t k : items) {

@@ -13,6 +13,7 @@
 #include "kernels/curves/segment.hpp"
 #include "kernels/geom/vec.hpp"
 #include "kernels/pocket/profile.hpp"
+#include "kernels/verify/plan_grid.hpp"
 
 namespace ncpath {
 
@@ -43,21 +44,10 @@ class WallSet {
   double cap() const { return cap_; }
 
  private:
-  struct Item {
-    std::uint32_t index;  // < segs_.size(): a line or arc, else pieces_[index - segs_.size()]
-  };
-  void add_box(std::uint32_t item, const Vec2& lo, const Vec2& hi);
-  void candidates(const Vec2& lo, const Vec2& hi, std::vector<std::uint32_t>& out) const;
-
   double cap_;
-  std::vector<Seg2> segs_;
-  std::vector<BezierPiece> pieces_;
-  Vec2 origin_ = Vec2::Zero();
-  double cell_ = 1;
-  int nx_ = 1, ny_ = 1;
-  std::vector<std::uint32_t> cell_start_;  // CSR over cells
-  std::vector<std::uint32_t> cell_items_;
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pending_;  // (cell, item) while building
+  std::vector<Seg2> segs_;           // grid items [0, segs_.size())
+  std::vector<BezierPiece> pieces_;  // grid items from segs_.size() on
+  PlanGrid grid_;
 };
 
 // Rational Bézier pieces of a NURBS curve (knot insertion to full multiplicity).
