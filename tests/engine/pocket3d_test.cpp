@@ -14,24 +14,13 @@
 
 #include "engine/parallel.hpp"
 #include "engine/pocket_path.hpp"
+#include "tests/kernels/surface/surface_test_util.hpp"
 #include "tests/support/shapes2d.hpp"
 
 namespace ncpath {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// z = a x + b y + c over [x0, x1] x [y0, y1] (bilinear NURBS).
-NurbsSurface plane(double a, double b, double c, double x0, double y0, double x1, double y1) {
-  NurbsSurface s;
-  s.degree_u = s.degree_v = 1;
-  s.nu = s.nv = 2;
-  for (double x : {x0, x1})
-    for (double y : {y0, y1}) s.ctrl.emplace_back(x, y, a * x + b * y + c);
-  s.weights.assign(4, 1.0);
-  s.knots_u = s.knots_v = {0, 0, 1, 1};
-  return s;
-}
 
 // The cylinder (x - cx)^2 + (z - cz)^2 = rho^2, upper part (vault, sign = +1) or lower part
 // (trough, sign = -1) over x in cx +- rho sin(60 deg), y in [y0, y1]: an exact rational
@@ -141,7 +130,7 @@ Region rect_pocket(double x0, double y0, double x1, double y1) {
 
 TEST(Pocket3d, InclinedPlaneGivesTheAnalyticDrop) {
   const double a = 0.2, b = -0.1, c = -8, r = 3;
-  const NurbsSurface s = plane(a, b, c, -5, -5, 75, 55);
+  const NurbsSurface s = test::tilted_plane(a, b, c, -5, -5, 75, 55);
   const Pocket3dParams p = params(r, 0.2);
   const Pocket3dPath out = plan_pocket3d({rect_pocket(0, 0, 60, 40)}, s, p);
   // Centre = contact + R n, n = (-a, -b, 1) / |.|: the tip is R (|(a, b, 1)| - 1) above
@@ -183,7 +172,7 @@ double distance_to_paths(const ClChunk& cl, const Vec2& q, double z) {
 
 TEST(Pocket3d, FlatBottomIsTheFlatPocketPath) {
   const double r = 3, h = 0.2, depth = 5;
-  const NurbsSurface s = plane(0, 0, -depth, -5, -5, 75, 55);
+  const NurbsSurface s = test::tilted_plane(0, 0, -depth, -5, -5, 75, 55);
   Pocket3dParams p = params(r, h);
   p.eps = 0.002;
   p.half_step_last = false;  // the flat pocket's levels exactly
@@ -361,10 +350,10 @@ TEST(Pocket3d, BadSurfacesAndPocketsOffTheSurface) {
     }
     return "";
   };
-  NurbsSurface knots = plane(0, 0, -5, -5, -5, 75, 55);
+  NurbsSurface knots = test::tilted_plane(0, 0, -5, -5, -5, 75, 55);
   knots.knots_u.push_back(1);
   EXPECT_NE(message(knots).find("bottom surface"), std::string::npos) << message(knots);
-  NurbsSurface weight = plane(0, 0, -5, -5, -5, 75, 55);
+  NurbsSurface weight = test::tilted_plane(0, 0, -5, -5, -5, 75, 55);
   weight.weights[1] = 0;
   EXPECT_NE(message(weight).find("weight"), std::string::npos) << message(weight);
   // A net that doubles back in x: folds over itself in plan.
@@ -380,7 +369,7 @@ TEST(Pocket3d, BadSurfacesAndPocketsOffTheSurface) {
   fold.knots_v = {0, 0, 1, 1};
   EXPECT_NE(message(fold).find("height field"), std::string::npos) << message(fold);
   // A surface that does not reach under the whole pocket.
-  EXPECT_NE(message(plane(0, 0, -5, 0, 0, 30, 30)).find("outside"), std::string::npos);
+  EXPECT_NE(message(test::tilted_plane(0, 0, -5, 0, 0, 30, 30)).find("outside"), std::string::npos);
   Pocket3dParams bad = p;
   bad.scallop = 0;
   EXPECT_NE(validate(bad).find("scallop"), std::string::npos);

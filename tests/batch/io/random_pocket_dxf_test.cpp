@@ -18,7 +18,7 @@
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/pocket/chain.hpp"
 #include "tests/batch/io/test_files.hpp"
-#include "tests/support/random_pockets.hpp"
+#include "tests/support/random_pockets_dxf.hpp"
 
 namespace ncpath::test {
 namespace {

@@ -228,4 +228,17 @@ class DropOracle {
   std::vector<Vec3> samples_;
 };
 
+// z = a x + b y + c over [x0, x1] x [y0, y1] (bilinear NURBS).
+inline NurbsSurface tilted_plane(double a, double b, double c, double x0, double y0, double x1,
+                                 double y1) {
+  NurbsSurface s;
+  s.degree_u = s.degree_v = 1;
+  s.nu = s.nv = 2;
+  for (double x : {x0, x1})
+    for (double y : {y0, y1}) s.ctrl.emplace_back(x, y, a * x + b * y + c);
+  s.weights.assign(4, 1.0);
+  s.knots_u = s.knots_v = {0, 0, 1, 1};
+  return s;
+}
+
 }  // namespace ncpath::test

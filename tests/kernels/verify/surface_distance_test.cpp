@@ -6,24 +6,14 @@
 
 #include <cmath>
 
+#include "tests/kernels/surface/surface_test_util.hpp"
+
 namespace ncpath {
 namespace {
 
-// The plane z = a x + b y + c over [x0, x1] x [y0, y1], as a bilinear NURBS patch.
-NurbsSurface plane(double a, double b, double c, double x0, double y0, double x1, double y1) {
-  NurbsSurface s;
-  s.degree_u = s.degree_v = 1;
-  s.nu = s.nv = 2;
-  for (double x : {x0, x1})
-    for (double y : {y0, y1}) s.ctrl.emplace_back(x, y, a * x + b * y + c);
-  s.weights.assign(4, 1.0);
-  s.knots_u = s.knots_v = {0, 0, 1, 1};
-  return s;
-}
-
 TEST(SurfaceProbe, TiltedPlaneDistancesAndHeights) {
   const double a = 0.3, b = -0.2, c = -5;
-  const NurbsSurface s = plane(a, b, c, -10, -10, 30, 20);
+  const NurbsSurface s = test::tilted_plane(a, b, c, -10, -10, 30, 20);
   const SurfaceProbe probe(s, 2.0);
   EXPECT_GT(probe.pieces(), 1u);
   const Vec3 n = Vec3(-a, -b, 1).normalized();
