@@ -58,8 +58,13 @@ struct Uncut {
   double before = 0, after = 0;
 };
 
+// radius: what the tool clears around its centre (R for flat bottoms). With per-level steps
+// (a ball's scallop, step_fn) it is half the band's step instead: two passes a step apart
+// leave at most the scallop height between them, so the band's points farther than half the
+// step from both of its loops are where the bound breaks (loops spreading apart around
+// corners); their clean-up curves are run like a flat pocket's.
 Uncut uncut_regions(const PocketOffsetResult& off, const LevelGroups& groups, double radius,
-                    double centre_step) {
+                    double centre_step, const StepFn* step_fn) {
   std::vector<std::vector<std::uint32_t>> inner(groups.members.size());
   for (std::uint32_t l = 0; l < off.loops.size(); ++l)
     if (!off.loops[l].loop.parents.empty())
@@ -82,16 +87,21 @@ Uncut uncut_regions(const PocketOffsetResult& off, const LevelGroups& groups, do
     }
     // Every point of a band lies within the step of its outer level: a step up to R leaves
     // nothing (the centre band's step is the one that emptied the next level).
-    const double step = inner[g].empty() ? centre_step : off.loops[inner[g][0]].step;
-    if (step <= radius) return;
-    const std::vector<OffsetLoop> u = uncut_between(outer_loops, inner_loops, radius);
+    double step = inner[g].empty() ? centre_step : off.loops[inner[g][0]].step;
+    double band_radius = radius;
+    if (step_fn) {
+      if (inner[g].empty()) step = (*step_fn)(off.loops[index[0]].level, outer_loops);
+      band_radius = 0.5 * step * (1 + tol::kScallopBand);
+    }
+    if (step <= band_radius) return;
+    const std::vector<OffsetLoop> u = uncut_between(outer_loops, inner_loops, band_radius);
     if (u.empty()) return;
     Band& b = bands[g];
     b.before = region_area(u);
     // What a tool running along the clean-up loops leaves: the region eroded by R.
     std::vector<std::vector<Seg2>> segs;
     for (const OffsetLoop& l : u) segs.push_back(l.segs);
-    b.after = region_area(offset_loops(segs, radius).loops);
+    b.after = region_area(offset_loops(segs, band_radius).loops);
     for (const OffsetLoop& l : u) {
       CleanupLoop c{l.segs, {}};
       for (std::uint32_t p : l.parents) c.bounds.push_back(index[p]);
@@ -203,8 +213,9 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
   clock = Stopwatch();
   // With per-level steps the step that emptied the innermost level is not kept: compute
   // the centre bands.
-  Uncut uncut = uncut_regions(off, groups, p.tool_radius,
-                              p.step ? std::numeric_limits<double>::infinity() : p.stepover);
+  Uncut uncut =
+      uncut_regions(off, groups, p.tool_radius,
+                    p.step ? std::numeric_limits<double>::infinity() : p.stepover, p.step);
   out.stats.uncut_area_before = uncut.before;
   // Unreachable: the region (less the stock) minus the tool swept around level 1, which is
   // the region eroded by R + stock already.

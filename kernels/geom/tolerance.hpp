@@ -321,6 +321,13 @@ inline constexpr double kPencilFamilyTie = 1e-9;
 // travel). Such a path is cut climb and conventional alike and keeps its orientation.
 inline constexpr double kCutSideNeutral = 1e-6;
 
+// Dimensionless (fraction of half the step). Sculptured pockets look for the material their
+// passes leave with the band eroded by half the step grown by this much: by exactly half, the
+// two levels' offsets coincide along every parallel stretch, which the dissection cannot
+// tell from a region; 1 % wider finds only where the loops spread apart by more, and leaves
+// at most ~2 % more than the scallop height there (within the surface tolerance delta).
+inline constexpr double kScallopBand = 0.01;
+
 // ---- Verifier: profiles (kernels/verify/wall_distance.*, engine/verify_profile.*) ----
 
 // mm. A move that cuts into the part (wall, floor, mesh, bottom) by more than this fails
