@@ -1,5 +1,6 @@
 #include "batch/cli/verify_cli.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -30,18 +31,18 @@ bool verify_one(const std::string& file, const out::StoredJob& job) {
   jobs::JobSpec spec =
       jobs::stored_job_spec(job.operation, job.input_path, job.tool_json, job.params_json);
   spec.verify = jobs::VerifyMode::kFull;
-  std::unique_ptr<jobs::JobVerifier> v = verifier_for(spec);
-  if (!v) {
-    std::printf("%s: %s: not verified (no verifier for this operation)\n", job.name.c_str(),
-                job.operation.c_str());
+  if (spec.operation == Operation::kDrop) {
+    std::printf("%s: %s: not verified (a probe: its points are answers, not moves)\n",
+                job.name.c_str(), job.operation.c_str());
     return true;
   }
+  std::unique_ptr<jobs::JobVerifier> v = verifier_for(spec);
   out::read_paths(file, job.name, [&](const ClChunk& c) { v->feed(c); });
   std::vector<out::StatValue> stats;
   const VerifyReport& r = v->finish(stats);
-  std::printf("%s: %s, %llu moves, max gouge %.3g mm, min clearance %.3g mm", job.name.c_str(),
-              job.operation.c_str(), static_cast<unsigned long long>(r.moves), r.max_gouge,
-              r.min_clearance);
+  std::printf("%s: %s, %llu moves, max gouge %.3g mm", job.name.c_str(), job.operation.c_str(),
+              static_cast<unsigned long long>(r.moves), r.max_gouge);
+  if (std::isfinite(r.min_clearance)) std::printf(", min clearance %.3g mm", r.min_clearance);
   for (const out::StatValue& s : stats)
     if (s.name == "verify_max_scallop")
       std::printf(", max scallop %.3g mm", std::get<double>(s.value));

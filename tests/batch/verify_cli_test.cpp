@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 
+#include "batch/io/stl_writer.hpp"
 #include "tests/batch/cli_run.hpp"
 #include "tests/batch/output/h5_read.hpp"
+#include "tests/support/meshes.hpp"
 
 namespace ncpath {
 namespace {
@@ -92,6 +95,34 @@ TEST(VerifyCli, VerifyOffWritesNoVerifierStatistics) {
       ncpath("pocket --profile " + dataset("bracket.dxf").string() +
              " --tool flat:6 --depth 2 --verify maybe --quiet --out " + (dir / "bad.h5").string());
   EXPECT_NE(bad.exit_code, 0);
+}
+
+TEST(VerifyCli, VerifyCommandChecksMeshJobsAndSkipsProbes) {
+  const auto dir = h5::out_dir("verify_cli_mesh");
+  io::write_binary_stl(dir / "part.stl", test::height_field(20, 40, [](double x, double y) {
+                         return 2 + std::sin(x / 5) * std::cos(y / 4);
+                       }));
+  std::ofstream(dir / "xy.csv") << "1,1\n20,20\n";
+  std::ofstream(dir / "jobs.toml") << R"(
+output = "out.h5"
+[[job]]
+name = "finish"
+input = "part.stl"
+tool = "ball:4"
+params = { interval = 2, step = 0.5 }
+[[job]]
+name = "probe"
+operation = "drop"
+input = "part.stl"
+tool = "flat:3"
+params = { points = "xy.csv" }
+)";
+  ASSERT_EQ(ncpath("run " + (dir / "jobs.toml").string() + " --quiet").exit_code, 0);
+  // Relative input paths are as stored: run the command where the batch ran.
+  const CmdResult v = ncpath("verify --in " + (dir / "out.h5").string());
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find("finish: raster,"), std::string::npos) << v.output;
+  EXPECT_NE(v.output.find("probe: drop: not verified"), std::string::npos) << v.output;
 }
 
 TEST(VerifyCli, VerifyCommandReportsMissingFileAndJob) {
