@@ -25,13 +25,10 @@ void put(PathOut& o, const Vec3& p, std::uint8_t contact) {
 PathOut guard_path(const MeshVerifier& mesh, const SweptTool& tool, const ClChunk& in,
                    std::size_t first, std::size_t n) {
   PathOut o;
-  const auto pt = [&](std::size_t i) {
-    return Vec3(in.xyz[3 * i], in.xyz[3 * i + 1], in.xyz[3 * i + 2]);
-  };
   for (std::size_t i = first; i < first + n; ++i) {
-    const Vec3 b = pt(i);
-    if (i > first && std::isfinite(b.z()) && std::isfinite(pt(i - 1).z())) {
-      const Vec3 a = pt(i - 1);
+    const Vec3 b = in.point(i);
+    if (i > first && std::isfinite(b.z()) && std::isfinite(in.point(i - 1).z())) {
+      const Vec3 a = in.point(i - 1);
       ++o.stats.moves;
       if (mesh.check_move(tool, a, b, tol::kVerifyGouge).gouge > 0) {
         // Across at the higher end's height, raised by the lift that clears that move.

@@ -59,24 +59,13 @@ WallSet profile_walls(const std::vector<Region>& regions, const ProfileVerifyPar
 VerifyReport verify_profile_moves(const WallSet& walls, const ClChunk& cl,
                                   const ProfileVerifyParams& prm, std::uint64_t first_move,
                                   std::uint32_t first_path) {
-  // Moves as (first point, path) in order; results in their own slots.
-  std::vector<std::uint32_t> move_point, move_path;
-  std::size_t start = 0;
-  for (std::size_t k = 0; k < cl.path_sizes.size(); ++k) {
-    for (std::size_t i = 1; i < cl.path_sizes[k]; ++i) {
-      move_point.push_back(static_cast<std::uint32_t>(start + i - 1));
-      move_path.push_back(static_cast<std::uint32_t>(k));
-    }
-    start += cl.path_sizes[k];
-  }
-  std::vector<MoveResult> res(move_point.size());
-  const auto pt = [&](std::size_t i) {
-    return Vec3(cl.xyz[3 * i], cl.xyz[3 * i + 1], cl.xyz[3 * i + 2]);
-  };
+  // Results in the moves' own slots.
+  const ChunkMoves mv = chunk_moves(cl);
+  std::vector<MoveResult> res(mv.size());
   par::for_each(res.size(), 256, [&](std::size_t m) {
-    const std::size_t i = move_point[m];
-    res[m] = check_move(walls, pt(i), pt(i + 1), static_cast<PathKind>(cl.path_kinds[move_path[m]]),
-                        prm);
+    const std::size_t i = mv.first[m];
+    res[m] = check_move(walls, cl.point(i), cl.point(i + 1),
+                        static_cast<PathKind>(cl.path_kinds[mv.path[m]]), prm);
   });
   VerifyReport out;
   out.keep = prm.worst;
@@ -85,8 +74,8 @@ VerifyReport verify_profile_moves(const WallSet& walls, const ClChunk& cl,
     out.min_clearance = std::min(out.min_clearance, res[m].clearance);
     out.min_rapid_clearance = std::min(out.min_rapid_clearance, res[m].rapid_clearance);
     if (res[m].amount > 0)
-      out.add({first_move + m, first_path + move_path[m], pt(move_point[m]), pt(move_point[m] + 1),
-               res[m].amount, res[m].kind});
+      out.add({first_move + m, first_path + mv.path[m], cl.point(mv.first[m]),
+               cl.point(mv.first[m] + 1), res[m].amount, res[m].kind});
   }
   return out;
 }

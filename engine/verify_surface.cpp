@@ -13,23 +13,6 @@ namespace ncpath {
 
 namespace {
 
-Vec3 point(const ClChunk& cl, std::size_t i) {
-  return Vec3(cl.xyz[3 * i], cl.xyz[3 * i + 1], cl.xyz[3 * i + 2]);
-}
-
-// Every move of the chunk as (first point, path), in order.
-void list_moves(const ClChunk& cl, std::vector<std::uint32_t>& first,
-                std::vector<std::uint32_t>& path) {
-  std::size_t start = 0;
-  for (std::size_t k = 0; k < cl.path_sizes.size(); ++k) {
-    for (std::size_t i = 1; i < cl.path_sizes[k]; ++i) {
-      first.push_back(static_cast<std::uint32_t>(start + i - 1));
-      path.push_back(static_cast<std::uint32_t>(k));
-    }
-    start += cl.path_sizes[k];
-  }
-}
-
 // Closed polylines of every boundary and island (even-odd: inside the pocket).
 std::vector<std::vector<Vec2>> region_polylines(const std::vector<Region>& regions, double chord) {
   std::vector<std::vector<Vec2>> out;
@@ -114,13 +97,13 @@ double lowest_over(const Vec3& c0, const Vec3& c1, const Vec2& q, double R) {
 
 VerifyReport verify_bottom_moves(const SurfaceProbe& bottom, const ClChunk& cl, double radius,
                                  double top, std::uint64_t first_move, std::uint32_t first_path) {
-  std::vector<std::uint32_t> first, path;
-  list_moves(cl, first, path);
+  const ChunkMoves mv = chunk_moves(cl);
+  const std::vector<std::uint32_t>& first = mv.first;
   std::vector<double> gap(first.size(), std::numeric_limits<double>::infinity());
   const Vec3 up(0, 0, radius);
   const double cap = radius + tol::kVerifyReach;
   par::for_each(first.size(), 64, [&](std::size_t m) {
-    const Vec3 a = point(cl, first[m]), b = point(cl, first[m] + 1);
+    const Vec3 a = cl.point(first[m]), b = cl.point(first[m] + 1);
     if (std::min(a.z(), b.z()) >= top) return;  // above the stock: nothing to cut
     const double d = bottom.segment_distance(a + up, b + up, cap);
     if (d < cap) gap[m] = d - radius;
@@ -130,7 +113,7 @@ VerifyReport verify_bottom_moves(const SurfaceProbe& bottom, const ClChunk& cl, 
   for (std::size_t m = 0; m < gap.size(); ++m) {
     out.min_clearance = std::min(out.min_clearance, gap[m]);
     if (-gap[m] > tol::kVerifyGouge)
-      out.add({first_move + m, first_path + path[m], point(cl, first[m]), point(cl, first[m] + 1),
+      out.add({first_move + m, first_path + mv.path[m], cl.point(first[m]), cl.point(first[m] + 1),
                -gap[m], ViolationKind::kBottom});
   }
   return out;
@@ -168,8 +151,8 @@ ScallopGrid::ScallopGrid(const std::vector<Region>& regions, const WallSet& wall
 }
 
 void ScallopGrid::add(const ClChunk& cl, double top) {
-  std::vector<std::uint32_t> first, path;
-  list_moves(cl, first, path);
+  const ChunkMoves mv = chunk_moves(cl);
+  const std::vector<std::uint32_t>& first = mv.first;
   // Moves below the top, bucketed by the grid cells their swept ball covers (count, fill).
   std::vector<std::uint32_t> moves;
   for (std::size_t m = 0; m < first.size(); ++m)
@@ -179,7 +162,7 @@ void ScallopGrid::add(const ClChunk& cl, double top) {
   // The moves on a grid of cells 2R wide, by the plan boxes of their swept balls.
   std::vector<std::pair<Vec2, Vec2>> boxes;
   for (std::uint32_t m : moves) {
-    const Vec2 a = point(cl, first[m]).head<2>(), b = point(cl, first[m] + 1).head<2>();
+    const Vec2 a = cl.point(first[m]).head<2>(), b = cl.point(first[m] + 1).head<2>();
     boxes.emplace_back(a.cwiseMin(b) - Vec2::Constant(radius_),
                        a.cwiseMax(b) + Vec2::Constant(radius_));
   }
@@ -194,7 +177,7 @@ void ScallopGrid::add(const ClChunk& cl, double top) {
       for (std::uint32_t e : near) {
         const std::uint32_t m = moves[e];
         best = std::min(
-            best, lowest_over(point(cl, first[m]) + up, point(cl, first[m] + 1) + up, q, radius_));
+            best, lowest_over(cl.point(first[m]) + up, cl.point(first[m] + 1) + up, q, radius_));
       }
       lowest_[k] = best;
     }

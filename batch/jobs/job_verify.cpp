@@ -45,12 +45,6 @@ Sampled sample_moves(const ClChunk& cl, std::uint64_t first_move, std::uint32_t 
   return s;
 }
 
-std::uint64_t move_count(const ClChunk& cl) {
-  std::uint64_t n = 0;
-  for (std::uint32_t s : cl.path_sizes) n += s > 0 ? s - 1 : 0;
-  return n;
-}
-
 class ProfileJobVerifier : public JobVerifier {
  public:
   ProfileJobVerifier(const JobSpec& job, const ProfileVerifyParams& p, const ProfileInput& in)

@@ -19,10 +19,10 @@ bool segments_meet(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q
   const double d3 = cross2(q1 - q0, p0 - q0), d4 = cross2(q1 - q0, p1 - q0);
   if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
     return true;
-  return (d1 == 0 && point_segment_gap(q0, p0, p1) == 0) ||
-         (d2 == 0 && point_segment_gap(q1, p0, p1) == 0) ||
-         (d3 == 0 && point_segment_gap(p0, q0, q1) == 0) ||
-         (d4 == 0 && point_segment_gap(p1, q0, q1) == 0);
+  return (d1 == 0 && point_segment_distance(q0, p0, p1) == 0) ||
+         (d2 == 0 && point_segment_distance(q1, p0, p1) == 0) ||
+         (d3 == 0 && point_segment_distance(p0, q0, q1) == 0) ||
+         (d4 == 0 && point_segment_distance(p1, q0, q1) == 0);
 }
 
 double point_arc_gap(const Vec2& p, const Seg2& s) {
@@ -31,8 +31,9 @@ double point_arc_gap(const Vec2& p, const Seg2& s) {
 }
 
 double segment_arc_gap(const Vec2& p0, const Vec2& p1, const Seg2& s) {
-  double best = std::min({point_arc_gap(p0, s), point_arc_gap(p1, s),
-                          point_segment_gap(s.a, p0, p1), point_segment_gap(s.b, p0, p1)});
+  double best =
+      std::min({point_arc_gap(p0, s), point_arc_gap(p1, s), point_segment_distance(s.a, p0, p1),
+                point_segment_distance(s.b, p0, p1)});
   const Vec2 d = p1 - p0;
   const double len = d.norm();
   if (len == 0) return best;
@@ -87,7 +88,7 @@ double flatness(const BezierPiece& b) {
   const Vec2 a = projected(b.ctrl.front()), e = projected(b.ctrl.back());
   double f = 0;
   for (std::size_t k = 1; k + 1 < b.ctrl.size(); ++k)
-    f = std::max(f, point_segment_gap(projected(b.ctrl[k]), a, e));
+    f = std::max(f, point_segment_distance(projected(b.ctrl[k]), a, e));
   return f;
 }
 
@@ -101,18 +102,10 @@ double box_gap(const Vec2& p0, const Vec2& p1, const Vec2& lo, const Vec2& hi) {
 
 }  // namespace
 
-double point_segment_gap(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double l2 = ab.squaredNorm();
-  if (l2 == 0) return (p - a).norm();
-  const double t = std::clamp((p - a).dot(ab) / l2, 0.0, 1.0);
-  return (p - (a + t * ab)).norm();
-}
-
 double segment_segment_gap(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q1) {
   if (segments_meet(p0, p1, q0, q1)) return 0;
-  return std::min({point_segment_gap(p0, q0, q1), point_segment_gap(p1, q0, q1),
-                   point_segment_gap(q0, p0, p1), point_segment_gap(q1, p0, p1)});
+  return std::min({point_segment_distance(p0, q0, q1), point_segment_distance(p1, q0, q1),
+                   point_segment_distance(q0, p0, p1), point_segment_distance(q1, p0, p1)});
 }
 
 double segment_curve_gap(const Vec2& p0, const Vec2& p1, const Seg2& s) {

@@ -11,14 +11,14 @@
 #include <vector>
 
 #include "kernels/curves/segment.hpp"
+#include "kernels/geom/segment2.hpp"
 #include "kernels/geom/vec.hpp"
 #include "kernels/pocket/profile.hpp"
 #include "kernels/verify/plan_grid.hpp"
 
 namespace ncpath {
 
-// Exact distances in the plane (mm).
-double point_segment_gap(const Vec2& p, const Vec2& a, const Vec2& b);
+// Exact distances in the plane (mm); point to segment: kernels/geom/segment2.hpp.
 double segment_segment_gap(const Vec2& p0, const Vec2& p1, const Vec2& q0, const Vec2& q1);
 // Segment [p0, p1] to a line or arc.
 double segment_curve_gap(const Vec2& p0, const Vec2& p1, const Seg2& s);

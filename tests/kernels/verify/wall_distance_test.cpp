@@ -26,8 +26,8 @@ double brute_force(const Vec2& p0, const Vec2& p1, const std::vector<Vec2>& pts)
 }
 
 TEST(WallDistance, SegmentsAnalytic) {
-  EXPECT_DOUBLE_EQ(point_segment_gap(Vec2(1, 2), Vec2(0, 0), Vec2(4, 0)), 2);
-  EXPECT_DOUBLE_EQ(point_segment_gap(Vec2(7, 4), Vec2(0, 0), Vec2(4, 0)), 5);
+  EXPECT_DOUBLE_EQ(point_segment_distance(Vec2(1, 2), Vec2(0, 0), Vec2(4, 0)), 2);
+  EXPECT_DOUBLE_EQ(point_segment_distance(Vec2(7, 4), Vec2(0, 0), Vec2(4, 0)), 5);
   EXPECT_EQ(segment_segment_gap(Vec2(0, -1), Vec2(0, 1), Vec2(-1, 0), Vec2(1, 0)), 0);  // cross
   EXPECT_DOUBLE_EQ(segment_segment_gap(Vec2(0, 1), Vec2(3, 1), Vec2(1, -2), Vec2(2, -2)), 3);
   // Collinear, disjoint.
