@@ -1,7 +1,5 @@
 // NURBS kernels on a wavy closed cubic of 200 spans (radius 50 +- 3 mm, 12 waves, crest
-// curvature radius about 5.8 mm): the Tiller-Hanson offset at 0.01 mm outwards and inwards by
-// 2 mm (no loops) and inwards by 8 mm (12 crest loops cut out), the biarc conversion and the
-// chordal polyline at 0.01 mm.
+// curvature radius about 5.8 mm): the biarc conversion and the chordal polyline at 0.01 mm.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -37,17 +35,6 @@ const Nurbs2& curve() {
   return c;
 }
 
-void offset(benchmark::State& state, double d) {
-  NurbsOffset o;
-  for (auto _ : state) {
-    o = nurbs_offset(curve(), d, 0.01);
-    benchmark::DoNotOptimize(o);
-  }
-  state.counters["pieces"] = static_cast<double>(o.pieces.size());
-  state.counters["knots_inserted"] = o.knots_inserted;
-  state.counters["max_dev_um"] = o.max_deviation * 1e3;
-}
-
 void to_arcs(benchmark::State& state) {
   std::size_t n = 0;
   for (auto _ : state) {
@@ -68,9 +55,6 @@ void polyline(benchmark::State& state) {
   state.counters["points"] = static_cast<double>(n);
 }
 
-BENCHMARK_CAPTURE(offset, wavy200_out_2mm, 2.0)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(offset, wavy200_in_2mm, -2.0)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(offset, wavy200_in_8mm_loops, -8.0)->Unit(benchmark::kMillisecond);
 BENCHMARK(to_arcs)->Name("to_arcs/wavy200_tol0.01")->Unit(benchmark::kMillisecond);
 BENCHMARK(polyline)->Name("polyline/wavy200_tol0.01")->Unit(benchmark::kMillisecond);
 

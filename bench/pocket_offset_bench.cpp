@@ -1,5 +1,5 @@
 // A NURBS-bounded pocket (issue 3): a closed cubic B-spline of 200 spans, offset level by
-// level until empty, tolerance 0.01 mm (Tiller-Hanson at level 1, exact arcs after).
+// level until empty, tolerance 0.01 mm (the NURBS as arcs, then exact arc offsets).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -390,10 +390,11 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
   if (!std::isfinite(st.min_interval)) st.min_interval = 0;
 
   Stopwatch clock;
-  // Walls and islands as lines and arcs (NURBS within half the tolerance): no chord may come
-  // closer than R + stock to them, plus half the tolerance where they approximate NURBS
+  // Walls and islands as lines and arcs (NURBS within half the tolerance, sampled): no chord
+  // may come closer than R + stock to them, plus the tolerance where they approximate NURBS
   // curves, so that chords keep R + stock from the true walls (one-sided: the margin is on
-  // the free side; the first level lies farther, see engine/pocket_offset.hpp).
+  // the free side; the first level lies as far, and eps/2 farther, see above and
+  // engine/pocket_offset.hpp).
   std::vector<Seg2> wall_segs;
   bool nurbs = false;
   for (const Region& g : regions) {
@@ -405,8 +406,7 @@ Pocket3dPath plan_pocket3d(const std::vector<Region>& regions, const NurbsSurfac
     }
   }
   const pocket_detail::SegGrid walls(wall_segs, p.tool_radius);
-  const double wall_limit = p.tool_radius + p.stock + (nurbs ? 0.5 * p.tolerance : 0);
-  // (The first level lies 2 tolerances farther in such regions: chords along it may sag.)
+  const double wall_limit = p.tool_radius + p.stock + (nurbs ? p.tolerance : 0);
   const SurfaceProbe probe(bottom, tol::kVerifyPiece * p.tool_radius);
   pocket_stage::ChunkBuilder b(out.cl, st.cut_length, st.link_length, st.rapid_length);
   std::vector<double> payload;

@@ -27,27 +27,6 @@ std::vector<Seg2> profile_segments(const Profile& profile, double tolerance) {
   return out;
 }
 
-void first_offsets(const Profile& profile, double d, double tolerance, OffsetRuns& runs) {
-  for (const ProfileCurve& c : profile.curves) {
-    if (c.nurbs < 0) {
-      Seg2 o;
-      if (raw_offset(c.seg, d, o, &runs.inverted)) runs.add(c.seg.a, &o, 1);
-      continue;
-    }
-    // Tiller-Hanson: the offset NURBS (self-loops cut out) within tolerance, then arcs.
-    const NurbsOffset off =
-        nurbs_offset(profile.nurbs[static_cast<std::size_t>(c.nurbs)], d, tolerance);
-    std::vector<Seg2> chain;
-    for (const Nurbs2& piece : off.pieces) {
-      std::vector<Seg2> arcs = nurbs_to_arcs(piece, tolerance, c.seg.source);
-      if (arcs.empty()) continue;
-      if (!chain.empty()) arcs.front().a = chain.back().b;  // pieces meet at their cut
-      chain.insert(chain.end(), arcs.begin(), arcs.end());
-    }
-    runs.add(c.seg.a, chain.data(), chain.size());
-  }
-}
-
 PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const PocketOffsetParams& p,
                                  const StepFn* step) {
   std::vector<OffsetLevels> per_region(regions.size());
@@ -55,28 +34,20 @@ PocketOffsetResult offset_pocket(const std::vector<Region>& regions, const Pocke
     par::for_each(n, 1, task);
   };
   // Level 1 lies wall_margin farther from every wall (the CL polylines' chords may sag that
-  // much toward it), and in a region with NURBS walls twice the tolerance farther again: the
-  // Tiller-Hanson offset and its arcs are each within half the tolerance of the truth as
-  // measured, up to about twice that in fact, either way. So every approximation falls on the
-  // free side, and the tool never comes closer than R + stock to the true walls.
+  // much toward it), and in a region with NURBS walls the tolerance farther again: those walls
+  // are offset as arcs within half the tolerance of them (sampled, so allowed twice that).
+  // So every approximation falls on the free side, and the tool never comes closer than
+  // R + stock to the true walls. The dissection then only meets exact lines and arcs.
   const double half_tol = 0.5 * p.tolerance;
   par::for_each(regions.size(), 1, [&](std::size_t r) {
-    std::vector<const Profile*> profiles{&regions[r].boundary};
-    for (const Profile& island : regions[r].islands) profiles.push_back(&island);
-    bool nurbs = false;
-    for (const Profile* pr : profiles) nurbs = nurbs || !pr->nurbs.empty();
-    const double first = p.tool_radius + p.stock + p.wall_margin + (nurbs ? 2 * p.tolerance : 0);
-    std::vector<std::vector<Seg2>> shapes;
-    std::vector<OffsetRuns> runs(profiles.size());
-    for (std::size_t l = 0; l < profiles.size(); ++l) {
-      shapes.push_back(profile_segments(*profiles[l], half_tol));
-      first_offsets(*profiles[l], first, half_tol, runs[l]);
+    std::vector<std::vector<Seg2>> shapes{profile_segments(regions[r].boundary, half_tol)};
+    bool nurbs = !regions[r].boundary.nurbs.empty();
+    for (const Profile& island : regions[r].islands) {
+      shapes.push_back(profile_segments(island, half_tol));
+      nurbs = nurbs || !island.nurbs.empty();
     }
-    // NURBS offsets and NURBS shapes are each within half the tolerance of the truth (the
-    // Tiller-Hanson offset measures up to about twice its own budget): validation allows
-    // twice the tolerance.
-    const double slack = nurbs ? 2 * p.tolerance : 0;
-    OffsetResult level1 = offset_prepared(std::move(runs), shapes, first, nullptr, slack);
+    const double first = p.tool_radius + p.stock + p.wall_margin + (nurbs ? p.tolerance : 0);
+    OffsetResult level1 = offset_loops(shapes, first);
     per_region[r] =
         step
             ? offset_levels_from(std::move(level1), *step, p.max_levels, parallel, p.half_step_last)

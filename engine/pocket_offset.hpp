@@ -4,11 +4,11 @@
 // stepover until nothing is left, with the offset generation history (parents).
 //
 // Level 1 lies at R + stock + wall_margin (the CL polylines' chordal tolerance) from the
-// walls, and in a region with NURBS walls two tolerances farther: NURBS curves are offset by
-// Tiller-Hanson and turned into arcs (each within half the tolerance as measured, up to about
-// twice that in fact, either way), so every approximation falls on the free side of the true
-// walls (at most ~4 tolerances of extra material on the walls of such a region). Later levels
-// offset exact arcs.
+// walls, and in a region with NURBS walls one tolerance farther: NURBS curves become arcs
+// within half the tolerance (sampled: allowed twice that) before anything is offset, so every
+// approximation falls on the free side of the true walls (at most the tolerance plus the
+// chordal tolerance of extra material on the walls of such a region). Every level is an exact
+// offset of lines and arcs.
 //
 // Input regions are independent (parallel tasks); within a level, the independent
 // sub-regions of a region are parallel tasks too (kernels/pocket/offset_levels.hpp). Output
@@ -25,7 +25,7 @@ struct PocketOffsetParams {
   double tool_radius = 3;   // mm
   double stepover = 1;      // mm between levels
   double stock = 0;         // mm left on walls and islands
-  double tolerance = 0.01;  // mm: NURBS walls: see above
+  double tolerance = 0.01;  // mm: NURBS walls become arcs within half of it: see above
   double wall_margin = 0;   // mm farther from the walls: the CL polylines' chordal tolerance
   std::uint32_t max_levels = 100000;
   bool half_step_last = false;  // with per-level steps: see offset_levels_from
@@ -46,10 +46,6 @@ struct PocketOffsetResult {
 
 // Lines and arcs of a profile, NURBS curves replaced by arcs within `tolerance`.
 std::vector<Seg2> profile_segments(const Profile& profile, double tolerance);
-
-// The raw offsets by d of a profile's curves: lines and arcs exactly, NURBS curves by
-// Tiller-Hanson within `tolerance`, then as arcs within it.
-void first_offsets(const Profile& profile, double d, double tolerance, OffsetRuns& runs);
 
 // step: when given, the distance from each level region to the next (e.g. from a scallop
 // height); params.stepover is then unused. Called from parallel tasks: thread-safe.

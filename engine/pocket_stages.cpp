@@ -237,7 +237,7 @@ Plan plan_pocket_parts(const std::vector<Region>& regions, const Settings& p) {
     // the band they leave is tolerance, not a corner the tool cannot reach.
     bool nurbs = !regions[r].boundary.nurbs.empty();
     for (const Profile& island : regions[r].islands) nurbs = nurbs || !island.nurbs.empty();
-    const double margin = p.wall_margin + (nurbs ? 2 * p.tolerance : 0);
+    const double margin = p.wall_margin + (nurbs ? p.tolerance : 0);
     unreachable[r] = std::max(0.0, area - region_area(dilate(first, p.tool_radius + margin)));
   });
   for (double a : unreachable) out.stats.unreachable_area += a;

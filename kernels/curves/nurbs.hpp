@@ -1,7 +1,7 @@
 #pragma once
 // Planar NURBS curves (any degree, rational, clamped knot vectors): evaluation, knot
-// insertion, splitting, reversal, Tiller-Hanson offsets and conversion to arcs for the exact
-// line/arc offset machinery. Pure math: no I/O, no threads. Lengths in mm.
+// insertion, splitting, reversal, polylines and conversion to arcs for the exact line/arc
+// offset machinery (pockets offset the arcs, never the NURBS itself). Pure math: no I/O, no threads. Lengths in mm.
 #include <string>
 #include <vector>
 
@@ -35,20 +35,6 @@ void nurbs_split(const Nurbs2& curve, double t, Nurbs2& left, Nurbs2& right);
 
 // Polyline through curve points whose chords deviate from the curve by <= chordal_tol.
 std::vector<Vec2> nurbs_polyline(const Nurbs2& curve, double chordal_tol);
-
-// Tiller-Hanson offset of `curve` by d to its right (d < 0: to the left), i.e. the curve
-// C(t) + d * N_right(t): offset the control polygon legs by d, intersect consecutive offset
-// legs for the new control points, measure the deviation from the true offset, and refine
-// by knot insertion where it exceeds tol. Where the curvature radius is below |d| on the
-// offset side, the offset has a self-loop: it is cut out at its self-intersection, which
-// splits the result into pieces.
-struct NurbsOffset {
-  std::vector<Nurbs2> pieces;  // in order along the curve
-  double max_deviation = 0;    // largest measured |distance to the true offset| - 0, mm
-  int knots_inserted = 0;
-  std::string error;           // non-empty when the curve is invalid
-};
-NurbsOffset nurbs_offset(const Nurbs2& curve, double d, double tol);
 
 // Lines and arcs (biarcs) within tol of the curve, joined end to end, G1 where the curve is;
 // `source` is copied into every segment.

@@ -48,13 +48,6 @@ int snap_knot(const Nurbs2& c, double& t);
 // Boehm insertion of t once, in place (multiplicity of t must be < degree, t0 < t < t1).
 void insert_knot_once(Nurbs2& c, double t);
 
-// The part of c between parameters a < b (clamped, same degree, same parameters).
-Nurbs2 sub_curve(const Nurbs2& c, double a, double b);
-
-// Joins b after a (a's end must equal b's start; same degree): a C0 knot of multiplicity
-// degree at the joint, b's knots shifted to follow a's, b's weights scaled to match.
-Nurbs2 join(const Nurbs2& a, const Nurbs2& b);
-
 // Unit tangent at t, falling back to a short chord where the derivative vanishes; `side` =
 // +1 looks forward from t, -1 backward (used at the ends of an interval).
 Vec2 unit_tangent(const Nurbs2& c, double t, int side);
@@ -65,13 +58,5 @@ struct PolyPoint {
   Vec2 p;
 };
 std::vector<PolyPoint> polyline_with_params(const Nurbs2& c, double chordal_tol);
-
-// Cuts the self-loops out of `offset` (a Tiller-Hanson offset of `original` by d, same
-// parameterisation) where the offset runs backwards (1 + d * curvature < 0 on `original`):
-// self-intersections of `offset` enclosing such a stretch are found on a polyline within tol,
-// refined by Newton and the stretch between them removed. Returns the remaining pieces in
-// order; pieces that run backwards throughout are dropped.
-std::vector<Nurbs2> trim_offset_loops(const Nurbs2& original, const Nurbs2& offset, double d,
-                                      double tol);
 
 }  // namespace ncpath::nurbs_detail

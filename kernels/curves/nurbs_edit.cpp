@@ -51,39 +51,6 @@ void insert_knot_once(Nurbs2& c, double t) {
   c.knots.insert(c.knots.begin() + k + 1, t);
 }
 
-Nurbs2 sub_curve(const Nurbs2& c, double a, double b) {
-  assert(a < b);
-  Nurbs2 cur = c, l, r;
-  if (a > nurbs_t0(cur)) {
-    nurbs_split(cur, a, l, r);
-    cur = std::move(r);
-  }
-  if (b < nurbs_t1(cur)) {
-    nurbs_split(cur, b, l, r);
-    cur = std::move(l);
-  }
-  return cur;
-}
-
-Nurbs2 join(const Nurbs2& a, const Nurbs2& b) {
-  assert(a.degree == b.degree);
-  const int p = a.degree;
-  Nurbs2 out;
-  out.degree = p;
-  out.ctrl = a.ctrl;
-  out.weights = a.weights;
-  out.knots.assign(a.knots.begin(), a.knots.end() - 1);
-  const double scale = a.weights.back() / b.weights.front();
-  for (std::size_t i = 1; i < b.ctrl.size(); ++i) {
-    out.ctrl.push_back(b.ctrl[i]);
-    out.weights.push_back(b.weights[i] * scale);
-  }
-  const double a_end = a.knots.back(), b0 = b.knots.front();
-  for (std::size_t i = p + 1; i < b.knots.size(); ++i)
-    out.knots.push_back(a_end + (b.knots[i] - b0));
-  return out;
-}
-
 }  // namespace nurbs_detail
 
 Nurbs2 nurbs_reversed(const Nurbs2& c) {
