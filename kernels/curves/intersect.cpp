@@ -10,9 +10,22 @@ namespace {
 
 inline double cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
 
-// Candidate point p lies on s (within eps)? Writes its parameter when asked.
-bool on_segment(const Seg2& s, const Vec2& p, double eps, bool want, double& t) {
-  if (distance(s, p) > eps) return false;
+// Candidate point p lies on s (within eps)? Writes its parameter when asked. A point of s's
+// carrier (on_carrier: computed on the line or circle through s) only needs to lie within
+// s's extent: its distance to s is rounding, which grows with the radius and the
+// coordinates (a 50 m radius arc's crossing lies 1e-8 mm off it), not a miss.
+bool on_segment(const Seg2& s, const Vec2& p, double eps, bool on_carrier, bool want, double& t) {
+  bool in;
+  if (!on_carrier) {
+    in = distance(s, p) <= eps;
+  } else if (!s.is_arc()) {
+    const Vec2 ab = s.b - s.a;
+    const double l = ab.norm(), along = (p - s.a).dot(ab) / l;
+    in = along >= -eps && along <= l + eps;
+  } else {
+    in = arc_contains_angle(s, p) || (p - s.a).norm() <= eps || (p - s.b).norm() <= eps;
+  }
+  if (!in) return false;
   t = want ? parameter_of(s, p) : 0.0;
   return true;
 }
@@ -113,6 +126,7 @@ int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps, bool w
   int n = 0;
   Vec2 cand[4];
   int nc = 0;
+  bool on_carriers = true;  // false: end points of collinear or co-circular overlaps
   if (!s0.is_arc() && !s1.is_arc()) {
     const Vec2 d0 = s0.b - s0.a, d1 = s1.b - s1.a;
     const double den = cross(d0, d1);
@@ -123,6 +137,7 @@ int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps, bool w
     } else {
       // Parallel: overlapping if collinear; the overlap's ends are the end points that lie
       // on the other segment.
+      on_carriers = false;
       for (const Vec2& p : {s0.a, s0.b}) cand[nc++] = p;
       for (const Vec2& p : {s1.a, s1.b})
         if (nc < 4) cand[nc++] = p;
@@ -133,14 +148,15 @@ int intersect(const Seg2& s0, const Seg2& s1, SegHit hits[2], double eps, bool w
     nc = line_circle(line.a, line.b, arc.c, arc.r, eps, cand);
   } else if ((s0.c - s1.c).norm() <= eps && std::abs(s0.r - s1.r) <= eps) {
     // Co-circular arcs: the overlap's ends.
+    on_carriers = false;
     for (const Vec2& p : {s0.a, s0.b, s1.a, s1.b}) cand[nc++] = p;
   } else {
     nc = circle_circle(s0.c, s0.r, s1.c, s1.r, eps, cand);
   }
   for (int k = 0; k < nc; ++k) {
     double t0, t1;
-    if (on_segment(s0, cand[k], eps, want_params, t0) &&
-        on_segment(s1, cand[k], eps, want_params, t1))
+    if (on_segment(s0, cand[k], eps, on_carriers, want_params, t0) &&
+        on_segment(s1, cand[k], eps, on_carriers, want_params, t1))
       n = add_hit(hits, n, cand[k], t0, t1, eps);
   }
   return n;

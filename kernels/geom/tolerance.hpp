@@ -70,6 +70,11 @@ inline constexpr double kOffsetSliver = 1e-5;
 // (~1e-13 mm); anything that comes closer by more than this is cut away.
 inline constexpr double kOffsetValid = 1e-7;
 
+// mm. A piece of a crude offset loop that comes closer than the offset distance to the input
+// by less than this is a marginal miss: its run's validity is then decided by most of the
+// run's length, not by that piece alone (kernels/pocket/offset_dissect.cpp).
+inline constexpr double kOffsetMarginal = 1e-3;
+
 // mm. Default join tolerance of chain_and_nest (kernels/pocket/chain.hpp): curve end points
 // closer than this are the same profile vertex and are snapped together exactly, so that loops
 // chain bitwise. Covers the rounding of coordinates written by CAD systems with ~15 digits.
@@ -105,15 +110,11 @@ inline constexpr double kKnotSnap = 1e-12;
 // going until its depth cap).
 inline constexpr double kNurbsMinTol = 1e-9;
 
-// Dimensionless, relative to the curve's size (diagonal of its control-point box). A
-// control-polygon leg shorter than this has no direction of its own (the Tiller-Hanson offset
-// borrows its neighbour's normal), and curve ends closer than this make the curve closed.
+// Dimensionless, relative to the curve's size (diagonal of its control-point box). A chord
+// shorter than this has no direction of its own (tangents fall back on a longer one), and
+// curve ends closer than this make the curve closed.
 inline constexpr double kNurbsZeroLength = 1e-12;
 
-// Dimensionless. Two consecutive offset control-polygon legs whose unit directions have
-// |cross| below this are parallel: the Tiller-Hanson control point is the offset vertex itself
-// instead of the legs' far-away intersection.
-inline constexpr double kOffsetParallelLegs = 1e-9;
 
 // Dimensionless, relative to (curve size / knot range). A first derivative shorter than this
 // is zero (a cusp or a repeated control point): the tangent is taken from a short chord.

@@ -89,33 +89,20 @@ int winding_number(const std::vector<Seg2>& loop, const Vec2& q) {
 
 OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
                           const std::vector<double>* area2) {
-  std::vector<OffsetRuns> runs(loops.size());
-  for (std::size_t l = 0; l < loops.size(); ++l) {
-    runs[l].segs.reserve(loops[l].size());
-    for (const Seg2& s : loops[l]) {
-      Seg2 o;
-      if (raw_offset(s, d, o, &runs[l].inverted)) runs[l].add(s.a, &o, 1);
-    }
-  }
-  return offset_prepared(std::move(runs), loops, d, area2);
-}
-
-OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
-                             const std::vector<std::vector<Seg2>>& loops, double d,
-                             const std::vector<double>* area2, double slack) {
   std::vector<RawSeg> raw;
-  std::size_t expected = 0;
-  for (const OffsetRuns& r : runs) expected += r.segs.size() + r.runs();
-  raw.reserve(expected + expected / 4);
-  for (std::size_t l = 0; l < runs.size(); ++l)
-    crude_loop(runs[l], static_cast<std::uint32_t>(l), d, raw);
+  std::vector<bool> inverted(loops.size());
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    pocket_detail::RawOffsets o = pocket_detail::raw_offsets(loops[l].data(), loops[l].size(), d);
+    inverted[l] = o.inverted;
+    crude_loop(o, static_cast<std::uint32_t>(l), raw);
+  }
   std::vector<pocket_detail::Chain> chains(loops.size());
   pocket_detail::DissectParams params;
   params.several_inputs = loops.size() > 1;
   double largest = 0;
   for (std::size_t l = 0; l < loops.size(); ++l) {
     const double a = area2 ? (*area2)[l] : loop_area2(loops[l]);
-    chains[l] = {static_cast<std::uint32_t>(l), true, runs[l].inverted, a};
+    chains[l] = {static_cast<std::uint32_t>(l), true, inverted[l], a};
     if (std::abs(a) > largest) {
       largest = std::abs(a);
       params.pocket = a < 0;
@@ -123,14 +110,14 @@ OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
   }
   std::vector<Seg2> input;  // all input curves, gathered only when a distance is needed
   std::optional<SegGrid> grid;
-  const double limit = d - std::max(slack, tol::kOffsetValid);
-  return pocket_detail::dissect(raw, chains, nullptr, params, [&](const Seg2& sg, std::uint32_t) {
+  const auto valid = [&](const Seg2& sg, std::uint32_t, double slack) {
     if (!grid) {
       for (const auto& l : loops) input.insert(input.end(), l.begin(), l.end());
       grid.emplace(input, d);
     }
-    return !grid->any_closer(sg, limit);
-  });
+    return !grid->any_closer(sg, d - slack);
+  };
+  return pocket_detail::dissect(raw, chains, nullptr, params, valid);
 }
 
 }  // namespace ncpath

@@ -55,32 +55,6 @@ struct OffsetResult {
 OffsetResult offset_loops(const std::vector<std::vector<Seg2>>& loops, double d,
                           const std::vector<double>* area2 = nullptr);
 
-// The raw offsets of one input loop's curves, already computed (e.g. a NURBS curve offset
-// by Tiller-Hanson and turned into arcs). Run k is segs[start[k], start[k+1]), a connected
-// chain; vertex[k] is where its input curve starts. Curves whose offset vanishes have no run.
-struct OffsetRuns {
-  std::vector<Seg2> segs;
-  std::vector<std::uint32_t> start{0};
-  std::vector<Vec2> vertex;
-  bool inverted = false;  // some arc turned inside out (raw_offset): the loop needs validation
-  void add(const Vec2& v, const Seg2* first, std::size_t count) {
-    if (count == 0) return;
-    segs.insert(segs.end(), first, first + count);
-    start.push_back(static_cast<std::uint32_t>(segs.size()));
-    vertex.push_back(v);
-  }
-  std::size_t runs() const { return vertex.size(); }
-};
-// The same as offset_loops, with the raw offsets given per input curve; `shapes` are the
-// input loops as lines/arcs (within the caller's tolerance), used for validation.
-// runs is taken by value: joining trims the runs' ends in place. slack: how much closer
-// than d to the shapes a kept piece may come; the raw offsets and the shapes are both
-// approximations when they come from NURBS curves, so callers pass their tolerances'
-// sum there (the default, tol::kOffsetValid, is for exact lines and arcs).
-OffsetResult offset_prepared(std::vector<OffsetRuns> runs,
-                             const std::vector<std::vector<Seg2>>& shapes, double d,
-                             const std::vector<double>* area2 = nullptr, double slack = 0);
-
 // The raw offset of one segment by d to its right (an arc of radius < d on that side turns
 // inside out: radius d - r past its centre); false only when an arc collapses to its centre.
 bool raw_offset(const Seg2& s, double d, Seg2& out, bool* inverted = nullptr);

@@ -1,5 +1,6 @@
 #include "kernels/pocket/offset_crude.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -39,9 +40,30 @@ bool extended_crossing(const Seg2& s0, const Seg2& s1, const Vec2& v, Vec2& out)
   return true;
 }
 
-// Joins `prev` (its end) to `next` (its start) around the original vertex v; may trim
-// both. True when a joining segment is needed: it is written to out.
-bool join(Seg2& prev, Seg2& next, const Vec2& v, Seg2& out) {
+// Whether the input turns left at the vertex v = e1.b = e2.a, given the unit normals n1, n2
+// of e1 and e2 there (n1 = (prev.b - v) / d: read from the offsets' ends, because the
+// offsets' own tangents run backwards along an arc turned inside out). Within 90 degrees of
+// straight on, the normals tell. Near a reversal (the tip of a thin spike, the end of a
+// crack) the curves' bending within the offset distance may outweigh the corner's angle:
+// a spike's sides may even cross a fraction of a micrometre from its tip. There the turn is
+// read at the offset's scale, from the chords to the points s = min(d, lengths) away.
+bool left_turn(const Seg2& e1, const Seg2& e2, const Vec2& n1, const Vec2& n2, double d) {
+  const double c = cross(n1, n2);
+  if (n1.dot(n2) >= 0) return c > 0;
+  const double l1 = length(e1), l2 = length(e2);
+  const double s = std::min({d, l1, l2});
+  const double bend = s * ((e1.is_arc() ? 1 / e1.r : 0) + (e2.is_arc() ? 1 / e2.r : 0));
+  if (std::abs(c) > bend) return c > 0;
+  const Vec2& v = e2.a;
+  const double chords = cross(v - point_at(e1, 1 - s / l1), point_at(e2, s / l2) - v);
+  if (chords != 0) return chords > 0;
+  return c > 0 || (c == 0 && tangent_at(e1, 1).dot(tangent_at(e2, 0)) < 0);
+}
+
+// Joins `prev` (its end) to `next` (its start), the offsets by d of the input curves e1 and
+// e2, around their common vertex; may trim both. True when a joining segment is needed: it
+// is written to out.
+bool join(Seg2& prev, Seg2& next, const Seg2& e1, const Seg2& e2, double d, Seg2& out) {
   // Ends that (nearly) meet are made to meet: a joining piece shorter than kOffsetJoint
   // would only be a rounding artefact, and would turn back on itself one level later.
   const double eps = tol::kOffsetPoint;
@@ -49,9 +71,8 @@ bool join(Seg2& prev, Seg2& next, const Vec2& v, Seg2& out) {
     move_end(next, prev.b, false);
     return false;
   }
-  const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
-  const double c = cross(te, ts);
-  if (c > 0 || (std::abs(c) <= 1e-15 && te.dot(ts) < 0)) {
+  const Vec2& v = e2.a;
+  if (left_turn(e1, e2, (prev.b - v).normalized(), (next.a - v).normalized(), d)) {
     // Left turn: the material side opens; the true offset is the arc around v.
     out = make_arc(prev.b, next.a, v, true, prev.source);
     out.r = (prev.b - v).norm();
@@ -82,111 +103,42 @@ bool join(Seg2& prev, Seg2& next, const Vec2& v, Seg2& out) {
   return true;
 }
 
-// At a right turn whose end segments do not meet (runs of many short arcs, e.g. a NURBS
-// curve's offset, overlap over many segments), the crossing nearest to the vertex among the
-// segments within `reach` mm of the run ends. On success the runs are shortened to it:
-// last (exclusive end of the previous run) and first (start of the next run) move.
-bool trim_overlap(std::vector<Seg2>& segs, std::uint32_t prev_begin, std::uint32_t& last,
-                  std::uint32_t& first, std::uint32_t next_end, const Vec2& v, double reach) {
-  // Candidate segments: walk back from the previous run's end and forward from the next
-  // run's start until `reach` mm of curve are covered, never past each other (one run).
-  std::vector<std::uint32_t> back, ahead;
-  double len = 0;
-  for (std::uint32_t i = last; i > prev_begin && len <= reach;) {
-    --i;
-    back.push_back(i);
-    len += length(segs[i]);
-  }
-  len = 0;
-  for (std::uint32_t j = first; j < next_end && len <= reach; ++j) {
-    ahead.push_back(j);
-    len += length(segs[j]);
-  }
-  double best = std::numeric_limits<double>::infinity();
-  std::uint32_t bi = 0, bj = 0;
-  Vec2 bp = Vec2::Zero();
-  std::vector<Vec2> lo(ahead.size()), hi(ahead.size());
-  for (std::size_t q = 0; q < ahead.size(); ++q) loose_bounds(segs[ahead[q]], lo[q], hi[q]);
-  for (std::uint32_t i : back) {
-    Vec2 ilo, ihi;
-    loose_bounds(segs[i], ilo, ihi);
-    for (std::size_t q = 0; q < ahead.size(); ++q) {
-      const std::uint32_t j = ahead[q];
-      if (i == j || lo[q].x() > ihi.x() || hi[q].x() < ilo.x() || lo[q].y() > ihi.y() ||
-          hi[q].y() < ilo.y())
-        continue;
-      SegHit hits[2];
-      const int n = intersect(segs[i], segs[j], hits, tol::kOffsetPoint, false);
-      for (int k = 0; k < n; ++k) {
-        const double dv = (hits[k].p - v).norm();
-        if (dv < best) {
-          best = dv;
-          bi = i;
-          bj = j;
-          bp = hits[k].p;
-        }
-      }
-    }
-  }
-  if (!std::isfinite(best)) return false;
-  move_end(segs[bi], bp, true);
-  move_end(segs[bj], bp, false);
-  last = bi + 1;
-  first = bj;
-  return true;
-}
-
 }  // namespace
 
-constexpr std::uint32_t kNoJoin = 0xffffffffu;
+RawOffsets raw_offsets(const Seg2* curves, std::size_t count, double d) {
+  RawOffsets out;
+  out.d = d;
+  out.segs.reserve(count);
+  out.curves.reserve(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    Seg2 o;
+    if (!raw_offset(curves[k], d, o, &out.inverted)) continue;
+    out.segs.push_back(o);
+    out.curves.push_back(curves[k]);
+  }
+  return out;
+}
 
-// The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
-// raw. d: the offset distance (bounds the search for overlaps at concave joints).
-void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<RawSeg>& raw) {
-  const std::size_t n = runs.runs();
+void crude_loop(RawOffsets& offsets, std::uint32_t loop_id, std::vector<RawSeg>& raw) {
+  std::vector<Seg2>& segs = offsets.segs;
+  const std::size_t n = segs.size();
   if (n == 0) return;
-  // Effective ranges of the runs: joins may trim whole segments off their ends.
-  std::vector<std::uint32_t> first(runs.start.begin(), runs.start.end() - 1),
-      last(runs.start.begin() + 1, runs.start.end());
-  // The joining segment after each run (at most one: an arc or a connector line).
-  std::vector<Seg2> joins;
-  std::vector<std::uint32_t> join_of(n, kNoJoin);  // index into joins, per run
+  const auto base = static_cast<std::uint32_t>(raw.size());
+  // Join every offset to the next (the last to the first), then emit each offset followed
+  // by its joining segment: joins trim the offsets' ends, so all joins come first. (A curve
+  // whose offset vanished leaves its neighbours' offsets to be joined at the start of the
+  // next curve.)
+  std::vector<Seg2> joins(n);
+  std::vector<std::uint8_t> joined(n, 0);
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t k1 = (k + 1) % n;
-    Seg2& prev = runs.segs[last[k] - 1];
-    Seg2& next = runs.segs[first[k1]];
-    Seg2 js;
-    if (!join(prev, next, runs.vertex[k1], js)) continue;
-    join_of[k] = static_cast<std::uint32_t>(joins.size());
-    joins.push_back(js);
-    // A connector line at a right turn means the ends missed each other: look further back.
-    const bool missed = !js.is_arc();
-    if (!missed) continue;
-    const Vec2 te = tangent_at(prev, 1), ts = tangent_at(next, 0);
-    if (cross(te, ts) > 0) continue;
-    // The overlap of two offsets at a corner turning by theta reaches d tan(theta / 2) from
-    // the vertex; 20 d covers turns up to ~174 degrees.
-    std::uint32_t l = last[k], f = first[k1];
-    const std::uint32_t prev_begin = k1 == k ? f + 1 : first[k];
-    const std::uint32_t next_end = k1 == k ? l - 1 : last[k1];
-    if (prev_begin >= l || f >= next_end) continue;
-    if (trim_overlap(runs.segs, prev_begin, l, f, next_end, runs.vertex[k1], 20 * d)) {
-      last[k] = l;
-      first[k1] = f;
-      join_of[k] = kNoJoin;
-    }
+    joined[k] = join(segs[k], segs[k1], offsets.curves[k], offsets.curves[k1], offsets.d, joins[k]);
   }
-  const auto base = static_cast<std::uint32_t>(raw.size());
   for (std::size_t k = 0; k < n; ++k) {
-    for (std::uint32_t q = first[k]; q < last[k]; ++q)
-      raw.push_back({runs.segs[q], loop_id, 0, 0, false});
-    if (join_of[k] != kNoJoin) {
-      const Seg2& js = joins[join_of[k]];
-      raw.push_back({js, loop_id, 0, 0, !js.is_arc()});
-    }
+    raw.push_back({segs[k], loop_id, 0, 0, false});
+    if (joined[k]) raw.push_back({joins[k], loop_id, 0, 0, !joins[k].is_arc()});
   }
   const auto m = static_cast<std::uint32_t>(raw.size() - base);
-  if (m == 0) return;
   for (std::uint32_t k = 0; k < m; ++k) {
     raw[base + k].prev = base + k - 1;
     raw[base + k].next = base + k + 1;

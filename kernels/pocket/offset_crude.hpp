@@ -21,11 +21,21 @@ struct RawSeg {
 // RawSeg::prev / next at the ends of an open chain.
 inline constexpr std::uint32_t kNoRaw = 0xffffffffu;
 
-// The crude offset loop of one input loop (its curves' raw offsets, in order), appended to
-// raw; joins may trim the runs in place. At a concave corner whose end segments miss each
-// other (runs of many short arcs overlap over several segments) the runs are cut back to
-// their crossing nearest the vertex, searched within 20 d of curve.
-void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<RawSeg>& raw);
+// The raw offsets of one input loop's curves by d (raw_offset), each with its input curve;
+// curves whose offset vanishes are left out.
+struct RawOffsets {
+  std::vector<Seg2> segs;
+  std::vector<Seg2> curves;  // segs[k] is the offset of curves[k]
+  double d = 0;
+  bool inverted = false;  // some arc turned inside out: the loop needs validation
+};
+RawOffsets raw_offsets(const Seg2* curves, std::size_t count, double d);
+
+// The crude offset loop of one input loop, appended to raw: consecutive offsets joined at
+// their vertex (an arc around it where the input turns left, trimmed at their crossing
+// where it turns right, a connector line where they miss each other); joins trim the
+// offsets in place.
+void crude_loop(RawOffsets& offsets, std::uint32_t loop_id, std::vector<RawSeg>& raw);
 
 // A chain of raw segments for dissect: a whole crude loop (closed), or a stretch of one
 // (open; a windowed dissection, kernels/pocket/uncut.cpp) whose end segments hold no point
@@ -33,7 +43,7 @@ void crude_loop(OffsetRuns& runs, std::uint32_t loop_id, double d, std::vector<R
 struct Chain {
   std::uint32_t input = 0;  // input loop it was offset from (result loops' parents)
   bool closed = true;
-  bool inverted = false;   // the input loop's offset has an inside-out arc (OffsetRuns)
+  bool inverted = false;   // the input loop's offset has an inside-out arc (RawOffsets)
   double input_area2 = 0;  // loop_area2 of the input loop (used for closed chains)
 };
 
@@ -43,9 +53,11 @@ struct DissectParams {
   bool pocket = false;          // largest input loop clockwise: holes outside every boundary go
 };
 
-// True when no input curve comes closer to the piece than the offset distance (less slack);
-// the piece is cut from raw[raw_index].
-using PieceValid = std::function<bool(const Seg2& piece, std::uint32_t raw_index)>;
+// True when no input curve comes closer to the piece than the offset distance less `slack`
+// (tol::kOffsetValid, or tol::kOffsetMarginal to tell a marginal miss from a real one); the
+// piece is cut from raw[raw_index].
+using PieceValid =
+    std::function<bool(const Seg2& piece, std::uint32_t raw_index, double slack)>;
 
 // Steps 3 to 6 of offset_loops on the chains' raw segments. rank (optional): each raw
 // segment's index in the complete crude loops; sweep ties and the order loops are started

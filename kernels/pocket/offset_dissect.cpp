@@ -197,12 +197,15 @@ OffsetResult dissect(const std::vector<RawSeg>& raw, const std::vector<Chain>& c
           if ((pieces[k].s.b - pieces[k].s.a).squaredNorm() >
               (pieces[best].s.b - pieces[best].s.a).squaredNorm())
             best = k;
-        ok = valid(pieces[best].s, raw_of(best)) ? 1 : 0;
+        ok = valid(pieces[best].s, raw_of(best), tol::kOffsetValid) ? 1 : 0;
       }
       for (std::size_t k = b; k < e; ++k) keep[k] = ok;
     } else {
       // Every run (cyclic on a closed chain) is valid or invalid as a whole: test its
-      // longest piece.
+      // longest piece. A piece that misses by less than kOffsetMarginal may sit where the
+      // run's validity changes after all, at the boundary of an input curve's neighbourhood
+      // that no crude loop follows (round the far side of a hooked spike's tip): then the
+      // run is what most of its length is.
       const std::size_t m = e - b;
       std::size_t first = 0;
       while (first < m && !pieces[b + first].run_start) ++first;
@@ -217,7 +220,15 @@ OffsetResult dissect(const std::vector<RawSeg>& raw, const std::vector<Chain>& c
               (pieces[best].s.b - pieces[best].s.a).squaredNorm())
             best = k;
         }
-        const std::uint8_t ok = valid(pieces[best].s, raw_of(best)) ? 1 : 0;
+        std::uint8_t ok = valid(pieces[best].s, raw_of(best), tol::kOffsetValid) ? 1 : 0;
+        if (!ok && len > 1 && valid(pieces[best].s, raw_of(best), tol::kOffsetMarginal)) {
+          double in = 0, out = 0;
+          for (std::size_t q = 0; q < len; ++q) {
+            const std::size_t k = b + (first + r + q) % m;
+            (valid(pieces[k].s, raw_of(k), tol::kOffsetValid) ? in : out) += length(pieces[k].s);
+          }
+          ok = in > out ? 1 : 0;
+        }
         for (std::size_t q = 0; q < len; ++q) keep[b + (first + r + q) % m] = ok;
         r += len;
       }

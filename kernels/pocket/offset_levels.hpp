@@ -47,7 +47,7 @@ void sequential_for_each(std::size_t n, const std::function<void(std::size_t)>& 
 OffsetLevels offset_levels(const std::vector<std::vector<Seg2>>& input, double first, double step,
                            std::uint32_t max_levels = 1000000,
                            const ForEach& for_each = sequential_for_each);
-// The same from a given first level (e.g. offset_prepared with Tiller-Hanson offsets).
+// The same from a given first level (e.g. offset_loops at another distance than step).
 OffsetLevels offset_levels_from(OffsetResult first_level, double step,
                                 std::uint32_t max_levels = 1000000,
                                 const ForEach& for_each = sequential_for_each);

@@ -90,7 +90,7 @@ class BandCrude {
       for (auto it = l->segs.rbegin(); it != l->segs.rend(); ++it)
         inner_segs_.push_back(reversed(*it));
     }
-    runs_.resize(loops_.size());
+    inverted_.resize(loops_.size());
     raw.reserve(2 * (no + ni) + 8);
   }
 
@@ -103,7 +103,7 @@ class BandCrude {
     return (outer(l) ? outer_segs_.data() : inner_segs_.data()) + loops_[l].first;
   }
   std::size_t curve_count(std::size_t l) const { return loops_[l].second; }
-  bool inverted(std::size_t l) const { return runs_[l].inverted; }
+  bool inverted(std::size_t l) const { return inverted_[l]; }
   double area2(std::size_t l) const {
     double a = 0;
     for (std::size_t k = 0; k < curve_count(l); ++k) a += area2_contribution(curves(l)[k]);
@@ -114,14 +114,9 @@ class BandCrude {
   // loop l is raw[loop_end[l - 1], loop_end[l]).
   void add_crude() {
     const std::size_t l = loop_end.size();
-    OffsetRuns& runs = runs_[l];
-    runs.segs.reserve(curve_count(l));
-    for (std::size_t k = 0; k < curve_count(l); ++k) {
-      const Seg2& s = curves(l)[k];
-      Seg2 o;
-      if (raw_offset(s, r_, o, &runs.inverted)) runs.add(s.a, &o, 1);
-    }
-    pocket_detail::crude_loop(runs, static_cast<std::uint32_t>(l), r_, raw);
+    pocket_detail::RawOffsets o = pocket_detail::raw_offsets(curves(l), curve_count(l), r_);
+    inverted_[l] = o.inverted;
+    pocket_detail::crude_loop(o, static_cast<std::uint32_t>(l), raw);
     loop_end.push_back(static_cast<std::uint32_t>(raw.size()));
   }
   void add_all() {
@@ -146,7 +141,7 @@ class BandCrude {
   std::size_t outer_count_;
   std::vector<Seg2> outer_segs_, inner_segs_;               // each level's curves, loop after loop
   std::vector<std::pair<std::size_t, std::size_t>> loops_;  // first curve, count
-  std::vector<OffsetRuns> runs_;
+  std::vector<std::uint8_t> inverted_;  // per band loop: its offset has an inside-out arc
   std::optional<SegGrid> outer_grid_, inner_grid_;
 };
 
@@ -225,13 +220,13 @@ std::vector<OffsetLoop> uncut_between(const std::vector<const OffsetLoop*>& oute
       params.pocket = a < 0;
     }
   }
-  const double limit = tool_radius - tol::kOffsetValid;
   const std::vector<std::uint32_t>* ranks = nullptr;
-  const auto valid = [&](const Seg2& s, std::uint32_t raw_index) {
+  const auto valid = [&](const Seg2& s, std::uint32_t raw_index, double slack) {
     // A piece of a certified segment comes closer than R - kOffsetValid to the other level.
     if (ranks && !bad[(*ranks)[raw_index]]) return false;
     for (const bool level : {true, false})
-      if (band.has_level(level) && band.grid(level).any_closer(s, limit)) return false;
+      if (band.has_level(level) && band.grid(level).any_closer(s, tool_radius - slack))
+        return false;
     return true;
   };
 
