@@ -5,8 +5,9 @@
 // surface passed over each grid point minus the bottom's height there.
 //
 // "Reachable": inside the pocket (inside the boundary, outside the islands) and at least
-// `reach` mm from every wall (the tool-centre region of the first level: R + stock plus the
-// planner's documented margins), so that corners the ball cannot enter are not counted.
+// `reach` mm from every wall (inside the outermost pass: R + stock plus the planner's
+// documented margins, batch/jobs/job_verify.cpp), so that corners the ball cannot enter and
+// the band along the walls no pass is spaced for are not counted.
 #include <vector>
 
 #include "engine/cl_chunk.hpp"

@@ -238,9 +238,13 @@ std::unique_ptr<JobVerifier> pocket3d_verifier(const JobSpec& job) {
     nurbs = nurbs || !r.boundary.nurbs.empty();
     for (const Profile& i : r.islands) nurbs = nurbs || !i.nurbs.empty();
   }
-  // The first level's distance from the walls (engine/pocket3d.hpp): the scallop is promised
-  // from there inwards.
-  const double reach = job.tool.radius + q.stock + 0.5 * q.eps + (nurbs ? 0.5 * q.tolerance : 0);
+  // The scallop is promised between passes: inside the outermost pass as it runs. The first
+  // level lies R + stock + eps/2 from the walls (engine/pocket3d.hpp), one tolerance more on
+  // NURBS walls (engine/pocket_offset.hpp), and its chords may run up to eps (the plan
+  // tolerance) inside it, away from the walls round convex corners. Between there and the
+  // walls lies the wall band, which no pass is spaced for.
+  const double reach =
+      job.tool.radius + q.stock + 0.5 * q.eps + q.eps + (nurbs ? q.tolerance : 0);
   return std::make_unique<Pocket3dJobVerifier>(job, p, in, reach);
 }
 

@@ -96,6 +96,13 @@ TEST(Pocket3dCli, CaseStudyWritesPathsContactsNormalsIntervalsAndStats) {
   h5::Id job(H5Gopen2(f, "/jobs/pocket3d", H5P_DEFAULT));
   EXPECT_EQ(h5::attr_str(job, "operation"), "pocket3d");
   EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+  // The verifier (issue 16): no gouge, and the scallop bound kept inside the outermost pass
+  // (it was exceeded, 0.954 > 0.9, where the first level's chords ran inside their loop
+  // round the R20 corner and the grid counted the band outside them).
+  EXPECT_EQ(st["verify_max_gouge"], 0);
+  EXPECT_EQ(st["verify_scallop_bound"], 0.9);
+  EXPECT_LE(st["verify_max_scallop"], st["verify_scallop_bound"]);
+  EXPECT_GT(st["verify_max_scallop"], 0.4);  // the grid does see the scallops
   const std::string params = h5::attr_str(job, "params");
   for (const char* s : {"\"scallop\":0.4", "\"eps\":0.5", "\"delta\":0.5", "\"tolerance\":0.01",
                         "seed000_bottom.toml", "\"safe_z\":5.0"})
