@@ -212,6 +212,18 @@ TEST(VerifyProfile, FormerOffsetFailuresNeverGouge) {
     EXPECT_TRUE(check_random_pocket(seed, helices)) << "seed " << seed << ": nothing planned";
 }
 
+// The one seed of 30,000 (scripts/verify-fuzz.sh, 2026-11-27) still cutting an island: its
+// corner is a hook of NURBS arcs whose radii are near the tool radius, and the d-neighbourhood
+// boundary there is made of vertex circles the crude loops do not follow (an island's level-1
+// loop is lost, open fragments; the verifier fails the job). Swallowing inside-out arcs and
+// going round their vertices' circles was tried and did not mend it; the complete fix is the
+// boundary of the union of the curves' neighbourhoods. Enable when mended:
+//   engine_verify_test --gtest_also_run_disabled_tests --gtest_filter=*Known*
+TEST(VerifyProfile, DISABLED_KnownOffsetFailure) {
+  int helices = 0;
+  EXPECT_TRUE(check_random_pocket(10874, helices));
+}
+
 }  // namespace
 }  // namespace ncpath
 
