@@ -1,14 +1,16 @@
-// ncpath_subdivide IN OUT.stl --min-facets N
+// ncpath_subdivide IN OUT.stl --min-facets N [--scheme midpoint|loop]
 //
 // Makes a large benchmark mesh out of a real one: reads IN (OFF or STL, via ncpath_io),
-// applies midpoint subdivision (every triangle -> 4, shared edge midpoints; the surface
-// does not move) until the mesh has at least N facets, and writes a binary STL. Used by
+// subdivides it (every triangle -> 4) until the mesh has at least N facets, and writes a
+// binary STL. midpoint (the default): shared edge midpoints, the surface does not move
+// (CAD-like: coplanar facets stay coplanar). loop: Loop's scheme, every vertex moves (a
+// dense scan-like mesh, no coplanar facets; kernels/mesh/subdivide.hpp). Used by
 // datasets/make-large-mesh.sh. Prints one line per step on stdout; errors on stderr with
 // exit code 1 (2 for bad usage).
 //
 // Note: an STL input is a triangle soup (the reader does not weld), so its facets share no
-// vertices and each one gets its own midpoints. The positions are the same as for a welded
-// mesh; only the vertex count is larger.
+// vertices and each one gets its own midpoints; Loop's scheme then sees every edge as a
+// border. Give it an OFF (welded) mesh.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -41,7 +43,7 @@ void print_box(const char* what, const ncpath::TriangleMesh& mesh) {
 }
 
 int run(const std::filesystem::path& in, const std::filesystem::path& out,
-        std::uint64_t min_facets) {
+        std::uint64_t min_facets, const std::string& scheme) {
   auto t0 = std::chrono::steady_clock::now();
   ncpath::io::MeshReadResult read = ncpath::io::read_mesh(in);
   ncpath::TriangleMesh mesh = std::move(read.mesh);
@@ -67,7 +69,7 @@ int run(const std::filesystem::path& in, const std::filesystem::path& out,
       return 1;
     }
     t0 = std::chrono::steady_clock::now();
-    mesh = ncpath::subdivide_midpoint(mesh);
+    mesh = scheme == "loop" ? ncpath::subdivide_loop(mesh) : ncpath::subdivide_midpoint(mesh);
     ++rounds;
     std::printf("round %d: %zu vertices, %zu facets in %.3f s\n", rounds, mesh.vertices.size(),
                 mesh.facets.size(), seconds_since(t0));
@@ -75,7 +77,7 @@ int run(const std::filesystem::path& in, const std::filesystem::path& out,
 
   // 80-byte STL header: say where the mesh came from and how it was made.
   const std::string header = "ncpath_subdivide " + in.filename().string() + " x" +
-                             std::to_string(1ull << (2 * rounds)) + " midpoint";
+                             std::to_string(1ull << (2 * rounds)) + " " + scheme;
   t0 = std::chrono::steady_clock::now();
   ncpath::io::write_binary_stl(out, mesh, header.substr(0, 80));
   std::printf("wrote %s: %zu facets, %ju bytes in %.3f s\n", out.string().c_str(),
@@ -87,20 +89,25 @@ int run(const std::filesystem::path& in, const std::filesystem::path& out,
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Midpoint-subdivide a mesh until it has at least N facets; write binary STL."};
+  CLI::App app{"Subdivide a mesh until it has at least N facets; write binary STL."};
   std::filesystem::path in, out;
   std::uint64_t min_facets = 0;
+  std::string scheme = "midpoint";
   app.add_option("input", in, "Input mesh (.off or .stl)")->required()->check(CLI::ExistingFile);
   app.add_option("output", out, "Output binary STL")->required();
   app.add_option("--min-facets", min_facets, "Subdivide until at least this many facets")
       ->required();
+  app.add_option("--scheme", scheme,
+                 "midpoint: the surface stays put (CAD-like); loop: Loop's smoothing, every "
+                 "vertex moves (scan-like, no coplanar facets)")
+      ->check(CLI::IsMember({"midpoint", "loop"}));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    return run(in, out, min_facets);
+    return run(in, out, min_facets, scheme);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ncpath_subdivide: %s\n", e.what());
     return 1;

@@ -1,7 +1,8 @@
 #pragma once
-// Midpoint (1-to-4) subdivision of an indexed triangle mesh. Pure geometry: it does not
-// smooth, so the refined mesh covers exactly the same surface as the input. Used to make
-// large benchmark meshes from real ones (datasets/make-large-mesh.sh).
+// Midpoint (1-to-4) subdivision of an indexed triangle mesh, and Loop's smoothing variant.
+// Midpoint subdivision does not smooth, so the refined mesh covers exactly the same surface
+// as the input: large CAD-like benchmark meshes (datasets/make-large-mesh.sh). Loop's moves
+// every vertex: dense scan-like meshes with no coplanar facets (datasets/make-dense-scans.sh).
 #include <cstddef>
 
 #include "kernels/mesh/triangle_mesh.hpp"
@@ -25,6 +26,17 @@ namespace ncpath {
 // uint32_t (see subdivide_midpoint_fits). Cost: O(F log F) time, O(V + F) memory, no
 // per-element allocation.
 TriangleMesh subdivide_midpoint(const TriangleMesh& mesh);
+
+// Loop's subdivision (C. Loop, 1987): the midpoint subdivision's facets (same order, same
+// vertex numbering), with smoothed positions, so a coarse scan becomes a dense one with no
+// two facets coplanar. An edge shared by exactly two facets gets 3/8 (a + b) + 1/8 (c + d)
+// (c, d: the corners opposite it); any other edge (boundary, non-manifold) is a crease and
+// gets its midpoint. A vertex with only two-facet edges and valence n >= 3 moves to
+// (1 - n beta) v + beta (sum of its neighbours), beta = (5/8 - (3/8 + cos(2 pi / n) / 4)^2)
+// / n; a vertex on exactly two crease edges to 3/4 v + 1/8 (their far ends); any other
+// vertex (a corner of creases, isolated) stays. Sums run in edge order: the same input gives
+// the same bytes. Same preconditions and cost as subdivide_midpoint.
+TriangleMesh subdivide_loop(const TriangleMesh& mesh);
 
 // True when one more round of subdivide_midpoint on a mesh of this size cannot overflow
 // the uint32_t vertex or facet indices (conservative: assumes every edge distinct).

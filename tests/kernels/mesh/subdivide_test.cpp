@@ -181,3 +181,88 @@ TEST(SubdivideMidpoint, FitsGuardsIndexOverflow) {
 
 }  // namespace
 }  // namespace ncpath
+
+namespace ncpath {
+namespace {
+
+// Regular octahedron, outward: every vertex has valence 4, every edge two facets.
+TriangleMesh octahedron() {
+  TriangleMesh m;
+  m.vertices = {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
+                Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
+  m.facets = {{{0, 2, 4}}, {{2, 1, 4}}, {{1, 3, 4}}, {{3, 0, 4}},
+              {{2, 0, 5}}, {{1, 2, 5}}, {{3, 1, 5}}, {{0, 3, 5}}};
+  return m;
+}
+
+// Loop's rules by hand on the octahedron: valence 4, beta = (5/8 - (3/8)^2) / 4 = 31/256, so
+// (1, 0, 0) goes to (1 - 4 beta) (1, 0, 0) + beta (sum of its 4 neighbours = 0) =
+// (33/64, 0, 0); the edge point of {(1,0,0), (0,1,0)} is 3/8 (1, 1, 0) + 1/8 ((0,0,1) +
+// (0,0,-1)) = (3/8, 3/8, 0).
+TEST(SubdivideLoop, OctahedronByHand) {
+  const TriangleMesh m = octahedron();
+  const TriangleMesh l = subdivide_loop(m);
+  const TriangleMesh mid = subdivide_midpoint(m);
+  ASSERT_EQ(l.facets, mid.facets);  // the same topology and numbering
+  ASSERT_EQ(l.vertices.size(), mid.vertices.size());
+  for (int k = 0; k < 6; ++k)
+    EXPECT_NEAR((l.vertices[k] - 33.0 / 64 * m.vertices[k]).norm(), 0, 1e-15) << k;
+  for (std::size_t v = 6; v < l.vertices.size(); ++v) {
+    // Every edge of the octahedron joins two unit vectors on different axes: its Loop point
+    // is 3/8 of their sum (the opposite corners cancel).
+    EXPECT_NEAR((l.vertices[v] - 0.75 * mid.vertices[v]).norm(), 0, 1e-15) << v;
+  }
+}
+
+// On a plane, a regular grid (valence 6 inside) is reproduced by the vertex rule (beta =
+// 1/16, the ring sums to 6 v) and every point stays in the plane; boundary edges are creases
+// (midpoints) and the boundary vertices with two crease edges move to 3/4 v + 1/8 (ends),
+// which on a straight border is v again.
+TEST(SubdivideLoop, FlatRegularGridStaysPutAndFlat) {
+  TriangleMesh m;
+  const int n = 6;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) m.vertices.emplace_back(i + 0.5 * j, 0.8660254037844386 * j, 2);
+  const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.facets.push_back({{id(i, j), id(i + 1, j), id(i, j + 1)}});
+      m.facets.push_back({{id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}});
+    }
+  const TriangleMesh l = subdivide_loop(m);
+  for (const Vec3& p : l.vertices) EXPECT_NEAR(p.z(), 2, 1e-12);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i)
+      EXPECT_NEAR((l.vertices[id(i, j)] - m.vertices[id(i, j)]).norm(), 0, 1e-12) << i << "," << j;
+  // Vertices inside a straight border keep their place (3/4 v + 1/8 (v - t) + 1/8 (v + t));
+  // the grid's corners, whose two border edges turn, do not.
+  for (int i = 1; i < n; ++i)
+    EXPECT_NEAR((l.vertices[id(i, 0)] - m.vertices[id(i, 0)]).norm(), 0, 1e-12) << i;
+}
+
+// A sphere-like closed mesh shrinks towards its limit surface and every vertex moves: no two
+// facets of the result are coplanar (what makes Loop meshes scan-like); the closed mesh stays
+// closed with F' = 4F; the same input gives the same bytes.
+TEST(SubdivideLoop, ClosedMeshEveryVertexMovesNoCoplanarNeighbours) {
+  const TriangleMesh once = subdivide_loop(octahedron());
+  const TriangleMesh twice = subdivide_loop(once);
+  EXPECT_EQ(twice.facets.size(), 4 * once.facets.size());
+  for (const auto& [e, uses] : edge_use(twice)) EXPECT_EQ(uses, 2);
+  for (std::size_t v = 0; v < once.vertices.size(); ++v)
+    EXPECT_GT((twice.vertices[v] - once.vertices[v]).norm(), 1e-6) << v;
+  // Neighbouring facets (sharing an edge) are never coplanar.
+  std::map<Edge, std::vector<std::size_t>> by_edge;
+  for (std::size_t f = 0; f < twice.facets.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      by_edge[edge(twice.facets[f][k], twice.facets[f][(k + 1) % 3])].push_back(f);
+  for (const auto& [e, fs] : by_edge) {
+    const Vec3 a = doubled_normal(twice, twice.facets[fs[0]]).normalized();
+    const Vec3 b = doubled_normal(twice, twice.facets[fs[1]]).normalized();
+    EXPECT_GT(a.cross(b).norm(), 1e-6);
+  }
+  const TriangleMesh again = subdivide_loop(subdivide_loop(octahedron()));
+  EXPECT_EQ(again.vertices, twice.vertices);
+}
+
+}  // namespace
+}  // namespace ncpath
