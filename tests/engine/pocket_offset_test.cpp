@@ -223,13 +223,11 @@ TEST(PocketOffset, NurbsLevelsDoNotDependOnTheTolerance) {
 // radius that the intersection rejected as 1e-8 mm off the circle, and a hooked tip whose
 // run was dropped for a marginal miss (6478).
 void expect_levels_at_their_distance(std::uint64_t seed) {
-  const double d = 4 + static_cast<double>(seed % 4) * 2;
-  test::RandomPocketOptions opt;
-  opt.tool_diameter = d;
-  const std::vector<Region> regions = test::random_pocket(seed, opt);
+  const test::RandomPocketCase c = test::random_pocket_case(seed);
+  const std::vector<Region>& regions = c.regions;
   PocketOffsetParams p;
-  p.tool_radius = d / 2;
-  p.stepover = d * (seed % 2 ? 0.5 : 0.8);
+  p.tool_radius = c.tool_diameter / 2;
+  p.stepover = c.stepover;
   p.tolerance = 0.01;
   const PocketOffsetResult res = offset_pocket(regions, p);
   EXPECT_EQ(res.open_fragments, 0u) << "seed " << seed;

@@ -154,13 +154,12 @@ std::pair<std::uint64_t, std::uint64_t> seed_range(std::uint64_t first, std::uin
 // within their radius. Returns false when the tool does not fit (nothing to verify); counts
 // the pockets entered by helices only.
 bool check_random_pocket(std::uint64_t seed, int& helices) {
-  const double d = 4 + static_cast<double>(seed % 4) * 2;  // 4, 6, 8, 10 mm
-  test::RandomPocketOptions opt;
-  opt.tool_diameter = d;
-  const std::vector<Region> regions = test::random_pocket(seed, opt);
+  const test::RandomPocketCase c = test::random_pocket_case(seed);
+  const std::vector<Region>& regions = c.regions;
+  const double d = c.tool_diameter;
   PocketPathParams p;
   p.tool_radius = d / 2;
-  p.stepover = d * (seed % 2 ? 0.5 : 0.8);
+  p.stepover = c.stepover;
   p.depth = 3;
   p.stepdown = seed % 3 == 0 ? 1.5 : 0;
   p.stock = seed % 5 == 0 ? 0.3 : 0;

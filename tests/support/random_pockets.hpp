@@ -530,4 +530,22 @@ inline std::vector<Region> random_pocket(std::uint64_t seed, const RandomPocketO
   return {region};
 }
 
+// A random pocket with the tool the randomized pocket tests use for it: diameter 4, 6, 8
+// or 10 mm and a stepover of half or 0.8 of it, both from the seed.
+struct RandomPocketCase {
+  std::vector<Region> regions;
+  double tool_diameter = 0;  // mm
+  double stepover = 0;       // mm
+};
+
+inline RandomPocketCase random_pocket_case(std::uint64_t seed) {
+  RandomPocketCase c;
+  c.tool_diameter = 4 + static_cast<double>(seed % 4) * 2;
+  c.stepover = c.tool_diameter * (seed % 2 ? 0.5 : 0.8);
+  RandomPocketOptions opt;
+  opt.tool_diameter = c.tool_diameter;
+  c.regions = random_pocket(seed, opt);
+  return c;
+}
+
 }  // namespace ncpath::test
