@@ -17,17 +17,29 @@
 namespace ncpath {
 namespace {
 
-void full_pocket(benchmark::State& state, bool islands, bool gcode, double stepover) {
+// The wavy 10,000-segment loop (A = 8.85), with the 12 islands when asked.
+std::vector<Region> wave_pocket(bool islands) {
   std::vector<Region> regions(1);
   regions[0].boundary = profile_of(bench::wave_loop(10000, 8.85));
   if (islands)
     for (const std::vector<Seg2>& island : bench::twelve_islands())
       regions[0].islands.push_back(profile_of(island));
+  return regions;
+}
+
+// Tool D = 1 mm, one pass 1 mm deep.
+PocketPathParams wave_params(double stepover) {
   PocketPathParams p;
   p.tool_radius = 0.5;
   p.stepover = stepover;
   p.depth = 1;
   p.chordal_tolerance = 0.00125;  // a quarter of the G-code arc tolerance, as jobs use
+  return p;
+}
+
+void full_pocket(benchmark::State& state, bool islands, bool gcode, double stepover) {
+  const std::vector<Region> regions = wave_pocket(islands);
+  const PocketPathParams p = wave_params(stepover);
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "ncpath_bench.ngc";
   PocketPathStats st;
   double gcode_s = 0;
@@ -61,15 +73,8 @@ void full_pocket(benchmark::State& state, bool islands, bool gcode, double stepo
 // The verifier on the planned wave pocket (with islands): walls indexed and every move checked,
 // as a pocket job does after planning; plan_s is the planning time of the same path.
 void verify_pocket(benchmark::State& state) {
-  std::vector<Region> regions(1);
-  regions[0].boundary = profile_of(bench::wave_loop(10000, 8.85));
-  for (const std::vector<Seg2>& island : bench::twelve_islands())
-    regions[0].islands.push_back(profile_of(island));
-  PocketPathParams p;
-  p.tool_radius = 0.5;
-  p.stepover = 0.5;
-  p.depth = 1;
-  p.chordal_tolerance = 0.00125;
+  const std::vector<Region> regions = wave_pocket(true);
+  const PocketPathParams p = wave_params(0.5);
   Stopwatch plan_clock;
   const PocketPath path = plan_pocket(regions, p);
   const double plan_s = plan_clock.seconds();
