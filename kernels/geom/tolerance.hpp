@@ -220,6 +220,19 @@ inline constexpr double kFlatEdgeKeep = 1e-9;
 // split into many triangles) have normals equal to ~1e-13.
 inline constexpr double kCoplanarSine = 1e-11;
 
+// mm. Input conditioning for the exact slicers (kernels/mesh/condition.hpp): a facet joins a
+// planar cluster when its vertices lie within this of the cluster's fitted plane, and a
+// cluster's plane is snapped to vertical or to an axis when every vertex stays within this of
+// the snapped plane. Noise of exporters (10-13 significant digits, unit conversions, double
+// booleans: 1e-13 to 1e-6 mm) lies below it; real tessellations bend far more (a 10 mm
+// radius fitted by 0.02 mm wide facets deviates 5e-6 mm).
+inline constexpr double kConditionPlane = 3e-6;
+
+// mm. A vertex is moved onto its clusters' planes only when that moves it at most this far;
+// the slicers then run for a ball grown by the largest move made, so no path gouges the part
+// as given.
+inline constexpr double kConditionMove = 6e-6;
+
 // Dimensionless (times R). A slice point of a cylinder or sphere counts as inside its
 // wedge / ring cone (the ball there would not cut into a facet) up to this much penetration.
 inline constexpr double kTrimSlack = 1e-12;

@@ -1,0 +1,227 @@
+#include "kernels/mesh/condition.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/SVD>
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "kernels/geom/tolerance.hpp"
+
+namespace ncpath {
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+
+struct Plane {
+  Vec3 n = Vec3::Zero();  // unit
+  double c = 0;           // n . p == c on the plane
+  int axis = -1;          // 0, 1, 2 when n is exactly +-e_axis
+};
+
+bool facet_normal(const TriangleMesh& m, std::uint32_t f, Vec3& n) {
+  const auto& t = m.facets[f];
+  const Vec3& a = m.vertices[t[0]];
+  n = (m.vertices[t[1]] - a).cross(m.vertices[t[2]] - a);
+  if (n.squaredNorm() < tol::kDegenerateArea2) return false;
+  return true;
+}
+
+// The plane fitted to the facets added so far: area-weighted normals (turned to agree with
+// the first) and area-weighted centroids.
+struct PlaneFit {
+  Vec3 normal_sum = Vec3::Zero(), centroid_sum = Vec3::Zero();
+  double area = 0;
+  void add(const TriangleMesh& m, std::uint32_t f, const Vec3& cross) {
+    const auto& t = m.facets[f];
+    const double a = 0.5 * cross.norm();
+    const Vec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3;
+    normal_sum += area > 0 && cross.dot(normal_sum) < 0 ? -0.5 * cross : 0.5 * cross;
+    centroid_sum += a * c;
+    area += a;
+  }
+  Plane plane() const {
+    Plane p;
+    p.n = normal_sum.normalized();
+    p.c = p.n.dot(centroid_sum / area);
+    return p;
+  }
+};
+
+bool facet_near(const TriangleMesh& m, std::uint32_t f, const Plane& p) {
+  for (std::uint32_t v : m.facets[f])
+    if (std::abs(p.n.dot(m.vertices[v]) - p.c) > tol::kConditionPlane) return false;
+  return true;
+}
+
+// Facets around each vertex (CSR over facet corners).
+struct Around {
+  std::vector<std::uint32_t> start, ids;
+};
+
+Around facets_around(const TriangleMesh& m) {
+  Around a;
+  a.start.assign(m.vertices.size() + 1, 0);
+  for (const auto& f : m.facets)
+    for (std::uint32_t v : f) ++a.start[v + 1];
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) a.start[v + 1] += a.start[v];
+  a.ids.resize(a.start.back());
+  std::vector<std::uint32_t> fill(a.start.begin(), a.start.end() - 1);
+  for (std::uint32_t f = 0; f < m.facets.size(); ++f)
+    for (std::uint32_t v : m.facets[f]) a.ids[fill[v]++] = f;
+  return a;
+}
+
+// Facets reached from `seed` through shared vertices that `accept` takes (seed first, then in
+// breadth-first order). `mark`/`stamp` record the visit; `free` says whether a facet may join.
+template <class Accept, class Free>
+void grow(std::uint32_t seed, const TriangleMesh& m, const Around& around,
+          std::vector<std::uint32_t>& mark, std::uint32_t stamp, Accept accept, Free free,
+          std::vector<std::uint32_t>& out) {
+  out.assign(1, seed);
+  mark[seed] = stamp;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    for (std::uint32_t v : m.facets[out[i]])
+      for (std::uint32_t k = around.start[v]; k < around.start[v + 1]; ++k) {
+        const std::uint32_t g = around.ids[k];
+        if (mark[g] != stamp && free(g) && accept(g)) {
+          mark[g] = stamp;
+          out.push_back(g);
+        }
+      }
+}
+
+// The cluster's plane turned to an axis plane, else to vertical, when every vertex of its
+// facets stays within kConditionPlane of it; else unchanged.
+Plane snap_to_axis(const TriangleMesh& m, const std::vector<std::uint32_t>& facets, Plane p) {
+  auto fits = [&](const Vec3& n) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::uint32_t f : facets)
+      for (std::uint32_t v : m.facets[f]) {
+        const double d = n.dot(m.vertices[v]);
+        lo = std::min(lo, d);
+        hi = std::max(hi, d);
+      }
+    return hi - lo <= 2 * tol::kConditionPlane ? 0.5 * (lo + hi) : NAN;
+  };
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(p.n[k]) < 0.5) continue;
+    const Vec3 n = Vec3::Unit(k);
+    if (const double c = fits(n); !std::isnan(c)) return {n, c, k};
+  }
+  const Vec3 h(p.n.x(), p.n.y(), 0);
+  if (p.n.z() != 0 && h.norm() > 0.5) {
+    const Vec3 n = h.normalized();
+    if (const double c = fits(n); !std::isnan(c)) return {n, c, -1};
+  }
+  return p;
+}
+
+// Cluster id per facet (kNone for degenerate ones) and each cluster's plane; `binding[c]` is
+// 1 when the cluster's plane constrains its vertices (two facets or more, or snapped).
+struct Clusters {
+  std::vector<std::uint32_t> of_facet;
+  std::vector<Plane> plane;
+  std::vector<std::uint8_t> binding;
+};
+
+Clusters find_clusters(const TriangleMesh& m, const Around& around, ConditionStats& st) {
+  const auto nf = std::uint32_t(m.facets.size());
+  Clusters cl;
+  cl.of_facet.assign(nf, kNone);
+  std::vector<Vec3> cross(nf);
+  std::vector<std::uint8_t> usable(nf);
+  for (std::uint32_t f = 0; f < nf; ++f) usable[f] = facet_normal(m, f, cross[f]);
+  std::vector<std::uint32_t> mark(nf, 0), members;
+  std::uint32_t stamp = 0;
+  auto free = [&](std::uint32_t g) { return usable[g] && cl.of_facet[g] == kNone; };
+  for (std::uint32_t seed = 0; seed < nf; ++seed) {
+    if (!free(seed)) continue;
+    PlaneFit fit;
+    fit.add(m, seed, cross[seed]);
+    grow(seed, m, around, mark, ++stamp,
+         [&](std::uint32_t g) {
+           if (!facet_near(m, g, fit.plane())) return false;
+           fit.add(m, g, cross[g]);
+           return true;
+         },
+         free, members);
+    Plane p = fit.plane();
+    if (members.size() > 1)  // held fixed: every member within kConditionPlane of it
+      grow(seed, m, around, mark, ++stamp, [&](std::uint32_t g) { return facet_near(m, g, p); }, free,
+           members);
+    const Plane snapped = snap_to_axis(m, members, p);
+    const bool moved = snapped.n != p.n;
+    const auto id = std::uint32_t(cl.plane.size());
+    for (std::uint32_t f : members) cl.of_facet[f] = id;
+    cl.plane.push_back(snapped);
+    cl.binding.push_back(members.size() > 1 || snapped.axis >= 0 || moved);
+    if (members.size() > 1) {
+      ++st.planes;
+      st.planar_facets += members.size();
+    }
+    if (moved) ++st.axis_planes;
+  }
+  return cl;
+}
+
+// The smallest move putting v on every plane (least squares, nearly parallel planes counted
+// once), or nullopt-like false when the planes do not meet within kConditionMove of v.
+bool move_onto(const Vec3& v, const std::vector<const Plane*>& planes, Vec3& out) {
+  Vec3 d;
+  if (planes.size() == 1) {
+    d = (planes[0]->c - planes[0]->n.dot(v)) * planes[0]->n;
+  } else {
+    Eigen::MatrixX3d n(planes.size(), 3);
+    Eigen::VectorXd r(planes.size());
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+      n.row(Eigen::Index(i)) = planes[i]->n.transpose();
+      r[Eigen::Index(i)] = planes[i]->c - planes[i]->n.dot(v);
+    }
+    Eigen::JacobiSVD<Eigen::MatrixX3d> svd(n, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    svd.setThreshold(1e-3);  // planes within ~0.06 degrees: one direction, averaged
+    d = svd.solve(r);
+  }
+  if (!(d.norm() <= tol::kConditionMove)) return false;
+  out = v + d;
+  for (const Plane* p : planes)
+    if (p->axis >= 0) out[p->axis] = p->n[p->axis] > 0 ? p->c : -p->c;
+  return true;
+}
+
+}  // namespace
+
+ConditionedMesh condition_mesh(const TriangleMesh& mesh) {
+  ConditionedMesh out;
+  out.mesh = mesh;
+  const Around around = facets_around(mesh);
+  const Clusters cl = find_clusters(mesh, around, out.stats);
+  const std::size_t nv = mesh.vertices.size();
+  std::vector<std::uint32_t> ids;
+  std::vector<const Plane*> planes;
+  for (std::size_t v = 0; v < nv; ++v) {
+    ids.clear();
+    for (std::uint32_t k = around.start[v]; k < around.start[v + 1]; ++k)
+      if (const std::uint32_t c = cl.of_facet[around.ids[k]]; c != kNone && cl.binding[c])
+        ids.push_back(c);
+    if (ids.empty()) continue;
+    std::sort(ids.begin(), ids.end());
+    const auto b = ids.begin(), e = ids.end();
+    planes.clear();
+    for (auto it = b; it != e; it = std::upper_bound(it, e, *it)) planes.push_back(&cl.plane[*it]);
+    Vec3 moved;
+    if (move_onto(out.mesh.vertices[v], planes, moved))
+      out.mesh.vertices[v] = moved;
+    else
+      ++out.stats.kept_vertices;
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (out.mesh.vertices[v] == mesh.vertices[v]) continue;
+    ++out.stats.moved_vertices;
+    out.stats.max_move = std::max(out.stats.max_move, (out.mesh.vertices[v] - mesh.vertices[v]).norm());
+  }
+  return out;
+}
+
+}  // namespace ncpath

@@ -1,0 +1,57 @@
+#pragma once
+// Input conditioning for the exact slicers (z-levels, drive planes, pencil, fillet): one pass
+// that gives every representation of a part the same near-degenerate-free geometry, so that
+// the kernels' exact predicates never see "almost coplanar" or "almost vertical" facets.
+//
+// Why. Exporters write a part's vertices with 6 to 17 significant digits, convert units, or
+// compute them in double booleans: faces that are planar in the part become facets whose
+// normals differ by 1e-13 to 1e-6. Two such facets cross at a grazing angle; the crossing of
+// their offset planes is then known only to rounding / angle (1e-16 * 100 mm / 1e-11 = 1e-3
+// mm), and the z-level contours lose or invent pieces there (issue 17). Far from that band the
+// configuration is well conditioned (digits 6: the facets clearly bend) or exactly degenerate
+// and handled as such (full precision: coplanar to rounding, share_coplanar_offsets).
+//
+// What. Facets are grown, through shared vertices (so that T-junctions and non-manifold edges
+// do not split a face), into planar clusters: a facet joins when its three vertices lie within tol::kConditionPlane of the plane fitted so far
+// (area-weighted normal and centroid); the cluster is then grown again from its seed against
+// that plane held fixed, so every member lies within kConditionPlane of it. A cluster's plane
+// is snapped to an axis plane (x, y or z = const), else to vertical (n.z = 0), when every
+// vertex of the cluster stays within kConditionPlane of the snapped plane. Each vertex is
+// then moved by the smallest displacement that puts it on all the planes of the clusters it
+// belongs to (two facets or more, or snapped: a lone facet's own plane passes through its
+// vertices), found by least squares (a point on one plane, a line on two, the corner on
+// three), and only when that moves it at most tol::kConditionMove; an axis plane's coordinate
+// is then set exactly (a horizontal face becomes z == c in every bit).
+//
+// Safety. Vertices move by at most stats.max_move (0 when nothing was near-degenerate, or
+// exactly degenerate already). Callers grow the ball by it (stock on the conditioned part),
+// so the tool keeps at least zero from the part as given.
+//
+// Deterministic: clusters are grown from the lowest facet index, the facets around a vertex
+// visited in index order.
+#include <cstdint>
+#include <vector>
+
+#include "kernels/mesh/triangle_mesh.hpp"
+
+namespace ncpath {
+
+struct ConditionStats {
+  std::uint64_t planes = 0;          // planar clusters of two or more facets
+  std::uint64_t planar_facets = 0;   // facets in them
+  std::uint64_t axis_planes = 0;     // cluster planes snapped to an axis plane or to vertical
+  std::uint64_t moved_vertices = 0;  // vertices moved onto their planes
+  std::uint64_t kept_vertices = 0;   // vertices that would have moved farther than kConditionMove
+  double max_move = 0;               // mm, the largest vertex displacement made
+};
+
+struct ConditionedMesh {
+  TriangleMesh mesh;  // same vertex and facet indices as the input
+  ConditionStats stats;
+};
+
+// The conditioned mesh (see above). The mesh must be welded (shared vertices by index:
+// engine/offset_elements_build.hpp condition_for_slicing welds exact duplicates first).
+ConditionedMesh condition_mesh(const TriangleMesh& mesh);
+
+}  // namespace ncpath
