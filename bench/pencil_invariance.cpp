@@ -8,8 +8,9 @@
 //   turn A    turned about z by A degrees around the box centre
 //   far       translated by (1000, 1000, 0) mm
 //   reversed  every facet's winding reversed
-// and prints paths, traced length, open z-level chains and the ratios to `full`: the issue's
-// bar is 0 open chains, length within 1 %, paths within 10 %.
+// and prints paths, traced length, open z-level chains, the ratios to `full` and the largest
+// vertex move of the input conditioning: the bar is 0 open chains, length within 1 %,
+// paths within 10 %.
 //
 //   ncpath_pencil_invariance [--mesh PATH ...] [--interval 0.5] [--step-down 1] [--threads 2]
 //
@@ -110,8 +111,8 @@ int main(int argc, char** argv) {
   par::ThreadLimit limit(threads);
   std::printf("ball 5 mm, fit %g mm, interval %g mm, step-down %g mm, %d threads\n", fit_xy,
               interval, step_down, threads);
-  std::printf("%-18s %-12s %6s %10s %12s %9s %9s %7s\n", "mesh", "variant", "paths", "length mm",
-              "open chains", "paths/full", "len/full", "s");
+  std::printf("%-18s %-12s %6s %10s %12s %9s %9s %9s %7s\n", "mesh", "variant", "paths",
+              "length mm", "open chains", "paths/full", "len/full", "moved mm", "s");
   for (const std::string& path : meshes) {
     io::MeshReadResult in = io::read_mesh(path);
     MeshTransform tr;
@@ -132,11 +133,12 @@ int main(int argc, char** argv) {
         full_paths = static_cast<double>(s.paths);
         full_length = s.traced_length;
       }
-      std::printf("%-18s %-12s %6llu %10.1f %12llu %9.3f %9.4f %7.2f\n",
+      std::printf("%-18s %-12s %6llu %10.1f %12llu %9.3f %9.4f %9.1e %7.2f\n",
                   std::filesystem::path(path).filename().c_str(), name.c_str(),
                   (unsigned long long)s.paths, s.traced_length,
                   (unsigned long long)s.zlevel_open_chains, s.paths / std::max(1.0, full_paths),
-                  s.traced_length / std::max(1e-300, full_length), clock.seconds());
+                  s.traced_length / std::max(1e-300, full_length), s.condition.max_move,
+                  clock.seconds());
       std::fflush(stdout);
     }
   }

@@ -27,6 +27,18 @@ std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& v) {
   return rep;
 }
 
+ConditionedMesh condition_for_slicing(const TriangleMesh& input) {
+  TriangleMesh mesh;
+  mesh.vertices = input.vertices;
+  const std::vector<std::uint32_t> rep = exact_duplicate_map(input.vertices);
+  mesh.facets.resize(input.facets.size());
+  par::for_each(input.facets.size(), 16384, [&](std::size_t i) {
+    const auto& f = input.facets[i];
+    mesh.facets[i] = {rep[f[0]], rep[f[1]], rep[f[2]]};
+  });
+  return condition_mesh(mesh);
+}
+
 OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double radius,
                                               bool swap_xy, Coplanar coplanar) {
   // Welded copy (facets remapped to the first of exactly equal vertices), x and y swapped

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "kernels/mesh/condition.hpp"
 #include "kernels/mesh/offset_elements.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
 
@@ -22,6 +23,11 @@ std::uint8_t contact_code(const OffsetElements& el, std::uint32_t id);
 
 // For every vertex, the lowest index of the vertices with exactly the same coordinates.
 std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& vertices);
+
+// The mesh welded at exactly equal vertices (facets refer to the lowest index of each group)
+// and conditioned for the exact slicers (kernels/mesh/condition.hpp): what z-levels, pencil
+// and fillet slice. Vertex and facet indices are the input's.
+ConditionedMesh condition_for_slicing(const TriangleMesh& mesh);
 
 // The elements build_offset_elements (the sequential reference) gives for the mesh welded
 // at exactly equal vertices (facets refer to the lowest index of each group: an STL soup

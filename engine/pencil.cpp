@@ -221,6 +221,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     ZLevelOpParams zp;
     zp.step_down = p.step_down;
     zp.tolerance = p.tolerance;
+    zp.condition = false;  // run_pencil conditioned the mesh
     const double top = se.box.hi.z();
     const ZLevelOpStats zs = run_zlevel(
         mesh, cutter, zp,
@@ -244,8 +245,22 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   }
   st.candidates = cand.size();
 
-  // 2. Pencil points and the family that traces each.
+  // 2. Pencil points (both contacts within the tolerance of the part) and the family that
+  // traces each.
+  Stopwatch index_clock0;
+  const MeshDistance distance(mesh);
+  st.index_s = index_clock0.seconds();
   Stopwatch link_clock;
+  std::vector<std::uint8_t> touches(cand.size(), 0);
+  par::for_each(cand.size(), 256, [&](std::size_t i) {
+    const PencilCandidate& c = cand[i];
+    if (bicontact_angle(c.b1, c.b2) < min_angle) return;
+    const Vec3 centre = c.p + Vec3(0, 0, cutter.radius);
+    auto on_part = [&](const Vec3& b) {
+      return distance.closest(centre - cutter.radius * b, p.tolerance).distance <= p.tolerance;
+    };
+    touches[i] = on_part(c.b1) && on_part(c.b2);
+  });
   const bool scanned[3] = {true, true, p.step_down > 0};
   std::array<std::vector<PencilCandidate>, 3> kept;
   std::array<std::vector<std::array<ElementRef, 2>>, 3> kept_refs;
@@ -253,6 +268,10 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     const PencilCandidate& c = cand[i];
     const double angle = bicontact_angle(c.b1, c.b2);
     if (angle < min_angle) continue;
+    if (!touches[i]) {
+      ++st.contactless_points;
+      continue;
+    }
     const bool keep = pencil_keep(c, scanned);
     res.points.push_back({c.p, c.b1, c.b2, angle, c.family, std::uint8_t(keep)});
     if (keep) {
@@ -307,8 +326,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   Stopwatch index_clock;
   const FacetTable table = build_facet_table(mesh);
   const DropIndex index(table, cutter);
-  const MeshDistance distance(mesh);
-  st.index_s = index_clock.seconds();
+  st.index_s += index_clock.seconds();
   auto deficit_at = [&](const Vec3& q) { return surface_deficit(index, floor_z, q); };
   auto closest = [&](const ElementRef& e) -> std::function<Vec3(const Vec3&)> {
     const auto& V = mesh.vertices;
@@ -553,23 +571,31 @@ std::string validate_stock(double stock, double radius) {
   return os.str();
 }
 
-// Stock s: the stages for the ball of radius R + s (the same centres), tips raised by s.
+// Stock s: the stages for the ball of radius R + s (the same centres), tips raised by s. The
+// mesh is conditioned first (condition_for_slicing) and s grown by its largest vertex move,
+// so the tool keeps s from the part as given.
 PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
                         RunControl& control) {
-  if (p.stock == 0) return run_pencil_exact(mesh, cutter, p, control);
   if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: pencil-cut needs a ball-end mill");
   if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
   if (std::string e = validate_stock(p.stock, cutter.radius); !e.empty())
     throw std::invalid_argument(e);
+  Stopwatch clock;
+  const ConditionedMesh cond = condition_for_slicing(mesh);
+  const double condition_s = clock.seconds();
+  const double stock = p.stock + cond.stats.max_move;
   Cutter grown = cutter;
-  grown.radius = cutter.radius + p.stock;
+  grown.radius = cutter.radius + stock;
   grown.corner_radius = grown.radius;
   PencilParams exact = p;
   exact.stock = 0;
-  PencilResult res = run_pencil_exact(mesh, grown, exact, control);
-  const Vec3 up(0, 0, p.stock);
+  PencilResult res = run_pencil_exact(cond.mesh, grown, exact, control);
+  res.stats.condition = cond.stats;
+  res.stats.elements_s += condition_s;
+  if (stock == 0) return res;
+  const Vec3 up(0, 0, stock);
   for (auto& path : res.paths)
     for (Vec3& q : path) q += up;
   for (PencilPoint& pt : res.points) pt.position += up;

@@ -8,7 +8,11 @@
 //      (engine/zlevel.hpp) at `step_down` (near-vertical creases cross no drive plane);
 //      junctions with the floor are not creases of the part and are left out;
 //   2. pencil points: candidates whose 3-D bi-contact angle (between b1 and b2) is at least
-//      `min_angle`; each is kept in the family whose layers its crease crosses most steeply
+//      `min_angle` and whose two contacts (R b1 and R b2 below the ball centre) lie within
+//      `tolerance` of the part (a z-level junction on a shadow puts its contact on the
+//      vertical below the element: under an overhang, or beside a wall that is not quite
+//      vertical, that is in the air; stats.contactless_points);
+//      each is kept in the family whose layers its crease crosses most steeply
 //      (kernels/cleanup/pencil.hpp, pencil_keep);
 //   3. tracing: pencil points on consecutive layers of a family linked along their crease
 //      tangents (b1 x b2) into chains; a chord A -> B whose error bound
@@ -28,6 +32,10 @@
 //      kernels/cleanup/cut_direction.hpp) every piece with a material side is first turned
 //      to run that way and the ordering keeps it; pieces without one (a symmetric V-groove,
 //      a vertical corner) keep the orientation the ordering gives them.
+// Conditioning. The mesh is first conditioned (kernels/mesh/condition.hpp): near-coplanar
+// facets made coplanar, near-vertical walls vertical, so that the answer does not depend on
+// how many digits the file carried; everything below runs on it with the stock grown by the
+// largest vertex move (stats.condition.max_move, at most tol::kConditionMove).
 // Stock to leave. With `stock` s the tool keeps s from the part everywhere: its centre runs
 // on the offset surface at distance R + s. The stages above run for a ball of radius R + s
 // (whose centre is the same) and every output point (paths, pencil points) is raised by s,
@@ -47,6 +55,7 @@
 #include "engine/run_control.hpp"
 #include "kernels/cleanup/cut_direction.hpp"
 #include "kernels/cutters/cutter.hpp"
+#include "kernels/mesh/condition.hpp"
 #include "kernels/geom/vec.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
 
@@ -88,6 +97,9 @@ struct PencilStats {
   std::uint64_t zlevel_open_chains = 0;  // z-level contours left open (their junctions lost)
   std::uint64_t candidates = 0;     // sharp-concave junctions seen
   std::uint64_t pencil_points = 0;  // with angle >= min_angle
+  // Candidates with angle >= min_angle dropped because a contact is farther than `tolerance`
+  // from the part (z-level junctions under an overhang); not in pencil_points.
+  std::uint64_t contactless_points = 0;
   std::uint64_t kept_points = 0;    // after the family choice
   std::uint64_t chains = 0;         // linked chains before merging
   std::uint64_t refined_points = 0;  // exact crease points added by refinement
@@ -100,6 +112,9 @@ struct PencilStats {
   double air_length = 0;             // mm, straight distance between consecutive pieces
   double elements_s = 0, scan_s = 0, zlevel_s = 0, link_s = 0, refine_s = 0, check_s = 0;
   double index_s = 0;  // the drop-cutter and distance indexes (refinement and check)
+  // The input conditioning (kernels/mesh/condition.hpp; its time is in elements_s): the
+  // stages run with the stock grown by condition.max_move.
+  ConditionStats condition;
 };
 
 struct PencilResult {

@@ -74,10 +74,16 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     throw std::invalid_argument("tool: z-level contouring needs a ball-end mill");
   if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
   ZLevelOpStats st;
-  const double R = cutter.radius;
-
   Stopwatch el_clock;
-  const OffsetElements el = build_offset_elements_parallel(mesh, R, false, Coplanar::kVertical);
+  ConditionedMesh cond;
+  if (p.condition) {
+    cond = condition_for_slicing(mesh);
+    st.condition = cond.stats;
+  }
+  const TriangleMesh& part = p.condition ? cond.mesh : mesh;
+  // Sliced for the ball grown by the largest move (same centres: kernel tip = z - grow).
+  const double grow = st.condition.max_move, R = cutter.radius + grow;
+  const OffsetElements el = build_offset_elements_parallel(part, R, false, Coplanar::kVertical);
   if (el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
   st.facets = el.facet_count();
   st.edges = el.edge_count();
@@ -132,14 +138,14 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   // Cut path index of each level's first contour is only known after the levels before it:
   // records are numbered per chunk and shifted when the chunk is merged.
   auto run_level = [&](std::size_t i, LevelOut& out) {
-    const double z = levels[i];
-    const std::size_t n = prefix(*cand, z);
+    const double z = levels[i], zk = z - grow;
+    const std::size_t n = prefix(*cand, zk);
     ZLevelParams kp = kernel;
     kp.inside = &inside;
     kp.candidates_filtered = cand == &filtered;
-    kp.unfiltered = std::span<const std::uint32_t>(by_top.data(), prefix(by_top, z));
+    kp.unfiltered = std::span<const std::uint32_t>(by_top.data(), prefix(by_top, zk));
     const ZLevelResult r =
-        zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), z, kp);
+        zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), zk, kp);
     if (i + 1 == chunk_end) next_inside = zlevel_inside(r, 0.5 * el.radius);
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
@@ -191,7 +197,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
         ZLevelJunctionRecord rec;
         rec.path = path;
         rec.kind = std::uint8_t(j.kind);
-        rec.position = {j.position.x(), j.position.y(), j.position.z()};
+        rec.position = {j.position.x(), j.position.y(), z};
         rec.b1 = {j.b1.x(), j.b1.y(), j.b1.z()};
         rec.b2 = {j.b2.x(), j.b2.y(), j.b2.z()};
         rec.element1 = element_ref(el, j.e1);
@@ -218,7 +224,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
         filtered.clear();
         filtered_n = 0;
       }
-      const std::size_t n = prefix(by_top, levels[c1 - 1]);
+      const std::size_t n = prefix(by_top, levels[c1 - 1] - grow);
       std::vector<std::uint32_t> test(filtered);
       test.insert(test.end(), by_top.begin() + std::ptrdiff_t(filtered_n),
                   by_top.begin() + std::ptrdiff_t(std::max(n, filtered_n)));

@@ -37,6 +37,7 @@
 #include "engine/run_control.hpp"
 #include "engine/scan.hpp"  // ScanElementRef
 #include "kernels/cutters/cutter.hpp"
+#include "kernels/mesh/condition.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
 
 namespace ncpath {
@@ -46,6 +47,10 @@ struct ZLevelOpParams {
   double step_down = 0;        // mm between levels from the top (0: use `levels`)
   double tolerance = 0.001;    // mm: chordal tolerance of the arcs' polylines
   std::uint32_t chunk_levels = 4;
+  // Condition the mesh first (condition_for_slicing, kernels/mesh/condition.hpp) and slice it
+  // for the ball grown by the largest vertex move, at the same centre heights: the contours
+  // keep the tool clear of the part as given. false: the mesh is conditioned already (pencil).
+  bool condition = true;
 };
 
 // Empty when usable; else a message naming the bad key.
@@ -89,6 +94,7 @@ struct ZLevelOpStats {
   std::uint64_t spliced_levels = 0;
   std::uint64_t facets = 0, edges = 0, vertices = 0;
   double top_z = 0, bottom_z = 0;  // the part's z range, mm
+  ConditionStats condition;        // the input conditioning (zeros when not asked)
   double elements_s = 0, compute_s = 0, sink_s = 0;
 };
 
