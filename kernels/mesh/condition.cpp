@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 #include "kernels/geom/tolerance.hpp"
@@ -190,13 +191,100 @@ bool move_onto(const Vec3& v, const std::vector<const Plane*>& planes, Vec3& out
   return true;
 }
 
+// The facets of each cluster (binding ones only; others empty).
+std::vector<std::vector<std::uint32_t>> cluster_facets(const TriangleMesh& m, const Clusters& cl) {
+  std::vector<std::vector<std::uint32_t>> out(cl.plane.size());
+  for (std::uint32_t f = 0; f < m.facets.size(); ++f)
+    if (const std::uint32_t c = cl.of_facet[f]; c != kNone && cl.binding[c]) out[c].push_back(f);
+  return out;
+}
+
+// Binding clusters whose planes coincide (every vertex of the later one within
+// kConditionPlane of the earlier one's plane) take the earlier one's plane, bit for bit:
+// pieces of one face that share no vertex (a wall interrupted by a fillet) then have exactly
+// one plane, and their edges' shadows coincide. Candidates are found by the plane's
+// orientation-independent normal, sorted on its x component.
+void unify_planes(const TriangleMesh& m, const std::vector<std::vector<std::uint32_t>>& facets,
+                  Clusters& cl) {
+  auto canonical = [](const Plane& p) {
+    const Vec3& n = p.n;
+    const bool flip = n.z() < 0 || (n.z() == 0 && (n.y() < 0 || (n.y() == 0 && n.x() < 0)));
+    return std::pair(flip ? Vec3(-n) : n, flip ? -p.c : p.c);
+  };
+  std::vector<std::uint32_t> order;
+  for (std::uint32_t c = 0; c < cl.plane.size(); ++c)
+    if (!facets[c].empty()) order.push_back(c);
+  std::vector<Vec3> n(cl.plane.size());
+  std::vector<double> off(cl.plane.size());
+  for (std::uint32_t c : order) std::tie(n[c], off[c]) = canonical(cl.plane[c]);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return n[a].x() != n[b].x() ? n[a].x() < n[b].x() : a < b;
+  });
+  constexpr double kWindow = 1e-4;  // normals of coinciding planes agree far closer
+  auto fits = [&](std::uint32_t c, const Plane& p) {
+    for (std::uint32_t f : facets[c])
+      for (std::uint32_t v : m.facets[f])
+        if (std::abs(p.n.dot(m.vertices[v]) - p.c) > tol::kConditionPlane) return false;
+    return true;
+  };
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const std::uint32_t b = order[i];
+    std::uint32_t best = b;
+    for (std::size_t j = i; j-- > 0 && n[b].x() - n[order[j]].x() <= kWindow;)
+      if (const std::uint32_t a = order[j]; a < best && (n[a] - n[b]).norm() <= kWindow &&
+                                            std::abs(off[a] - off[b]) <= 2 * tol::kConditionPlane)
+        best = a;
+    for (std::size_t j = i + 1; j < order.size() && n[order[j]].x() - n[b].x() <= kWindow; ++j)
+      if (const std::uint32_t a = order[j]; a < best && (n[a] - n[b]).norm() <= kWindow &&
+                                            std::abs(off[a] - off[b]) <= 2 * tol::kConditionPlane)
+        best = a;
+    if (best != b && fits(b, cl.plane[best])) cl.plane[b] = cl.plane[best];
+  }
+}
+
+// (vertex, cluster) pairs, sorted: vertices that are on no facet of a vertical cluster but
+// reach its plane through edges lying in it (within kConditionPlane), e.g. a ruling of the
+// curved surface next to a wall facet. Their edges' shadows run along the plane's shadow, so
+// they must lie on it as exactly as the cluster's own vertices.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> vertical_extensions(
+    const TriangleMesh& m, const Around& around, const Clusters& cl,
+    const std::vector<std::vector<std::uint32_t>>& members) {
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
+  std::vector<std::uint32_t> mark(m.vertices.size(), kNone), queue;
+  for (std::uint32_t c = 0; c < cl.plane.size(); ++c) {
+    const Plane& p = cl.plane[c];
+    if (members[c].empty() || p.n.z() != 0) continue;
+    queue.clear();
+    for (std::uint32_t f : members[c])
+      for (std::uint32_t v : m.facets[f])
+        if (mark[v] != c) {
+          mark[v] = c;
+          queue.push_back(v);
+        }
+    const std::size_t own = queue.size();
+    for (std::size_t i = 0; i < queue.size(); ++i)
+      for (std::uint32_t k = around.start[queue[i]]; k < around.start[queue[i] + 1]; ++k)
+        for (std::uint32_t w : m.facets[around.ids[k]])
+          if (mark[w] != c && std::abs(p.n.dot(m.vertices[w]) - p.c) <= tol::kConditionPlane) {
+            mark[w] = c;
+            queue.push_back(w);
+          }
+    for (std::size_t i = own; i < queue.size(); ++i) out.emplace_back(queue[i], c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 }  // namespace
 
 ConditionedMesh condition_mesh(const TriangleMesh& mesh) {
   ConditionedMesh out;
   out.mesh = mesh;
   const Around around = facets_around(mesh);
-  const Clusters cl = find_clusters(mesh, around, out.stats);
+  Clusters cl = find_clusters(mesh, around, out.stats);
+  const auto facets = cluster_facets(mesh, cl);
+  unify_planes(mesh, facets, cl);
+  const auto extended = vertical_extensions(mesh, around, cl, facets);
   const std::size_t nv = mesh.vertices.size();
   std::vector<std::uint32_t> ids;
   std::vector<const Plane*> planes;
@@ -205,6 +293,9 @@ ConditionedMesh condition_mesh(const TriangleMesh& mesh) {
     for (std::uint32_t k = around.start[v]; k < around.start[v + 1]; ++k)
       if (const std::uint32_t c = cl.of_facet[around.ids[k]]; c != kNone && cl.binding[c])
         ids.push_back(c);
+    for (auto it = std::lower_bound(extended.begin(), extended.end(), std::pair(std::uint32_t(v), 0u));
+         it != extended.end() && it->first == v; ++it)
+      ids.push_back(it->second);
     if (ids.empty()) continue;
     std::sort(ids.begin(), ids.end());
     const auto b = ids.begin(), e = ids.end();

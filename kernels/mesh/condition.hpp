@@ -11,17 +11,24 @@
 // configuration is well conditioned (digits 6: the facets clearly bend) or exactly degenerate
 // and handled as such (full precision: coplanar to rounding, share_coplanar_offsets).
 //
-// What. Facets are grown, through shared vertices (so that T-junctions and non-manifold edges
-// do not split a face), into planar clusters: a facet joins when its three vertices lie within tol::kConditionPlane of the plane fitted so far
-// (area-weighted normal and centroid); the cluster is then grown again from its seed against
-// that plane held fixed, so every member lies within kConditionPlane of it. A cluster's plane
-// is snapped to an axis plane (x, y or z = const), else to vertical (n.z = 0), when every
-// vertex of the cluster stays within kConditionPlane of the snapped plane. Each vertex is
-// then moved by the smallest displacement that puts it on all the planes of the clusters it
-// belongs to (two facets or more, or snapped: a lone facet's own plane passes through its
-// vertices), found by least squares (a point on one plane, a line on two, the corner on
-// three), and only when that moves it at most tol::kConditionMove; an axis plane's coordinate
-// is then set exactly (a horizontal face becomes z == c in every bit).
+// What. Four steps, one purpose: every face the part has is one exact plane.
+//   1. Clusters. Facets are grown, through shared vertices (T-junctions and non-manifold
+//      edges do not split a face), into planar clusters: a facet joins when its three
+//      vertices lie within tol::kConditionPlane of the plane fitted so far (area-weighted
+//      normal and centroid); the cluster is then grown again from its seed against that plane
+//      held fixed, so every member lies within kConditionPlane of it.
+//   2. Snaps. A cluster's plane becomes an axis plane (x, y or z = const), else vertical
+//      (n.z = 0), when every vertex of the cluster stays within kConditionPlane of it.
+//   3. One plane per face. Clusters whose planes coincide within kConditionPlane take the
+//      earliest one's plane, bit for bit: pieces of a face that share no vertex (a wall
+//      interrupted by a fillet) then have edges whose shadows coincide exactly.
+//   4. Moves. Each vertex moves by the smallest displacement (least squares: a point on one
+//      plane, a line on two, the corner on three) that puts it on the planes of its
+//      clusters (two facets or more, or snapped: a lone facet's own plane passes through its
+//      vertices) and of the vertical clusters it reaches through edges lying in their plane
+//      (a ruling of the curved surface beside a wall, whose shadow runs along the wall's),
+//      only when that moves it at most tol::kConditionMove; an axis plane's coordinate is
+//      then set exactly (a horizontal face becomes z == c in every bit).
 //
 // Safety. Vertices move by at most stats.max_move (0 when nothing was near-degenerate, or
 // exactly degenerate already). Callers grow the ball by it (stock on the conditioned part),

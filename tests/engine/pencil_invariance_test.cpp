@@ -39,6 +39,12 @@ double round_digits(double x, int digits) {
   return std::strtod(buf, nullptr);
 }
 
+std::string noise_label(double e, unsigned seed) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "noise %.0e seed %u", e, seed);
+  return buf;
+}
+
 std::vector<Variant> variants() {
   std::vector<Variant> out;
   out.push_back({"float32", [](TriangleMesh& m) {
@@ -50,7 +56,7 @@ std::vector<Variant> variants() {
                    }});
   for (double e : {1e-13, 1e-11, 1e-9, 1e-7})
     for (unsigned seed : {1u, 2u})
-      out.push_back({"noise " + std::to_string(e) + " seed " + std::to_string(seed),
+      out.push_back({noise_label(e, seed),
                      [e, seed](TriangleMesh& m) {
                        std::mt19937_64 bits(seed);
                        std::uniform_real_distribution<double> u(-e, e);
@@ -102,7 +108,17 @@ void expect_sound(const TriangleMesh& m, const PencilResult& r, const PencilPara
   test_meshes::expect_no_gouge(m, r.paths, R);
 }
 
-void expect_invariant(const std::string& name) {
+// What a mesh must meet beyond 0 open chains and the oracles: the bars (length within
+// 1 %, paths within 10 %), loosened only where the tracing is known to fall short, each
+// loosening measured (docs/performance.md) and named here.
+struct Bars {
+  double length = 0.01;       // relative
+  double turn_length = 0.01;  // relative, for the turned part
+  int path_slack = 0;         // paths either way beyond 10 % (a piece split off or joined)
+};
+
+void expect_invariant(const std::string& name, const Bars& bars,
+                      const std::vector<std::string>& only = {}) {
   const TriangleMesh mesh = test_meshes::load(name);
   const Cutter ball = ball_cutter(5);  // diameter 5 mm
   const double R = ball.radius;
@@ -113,23 +129,39 @@ void expect_invariant(const std::string& name) {
   ASSERT_GT(full.stats.paths, 0u);
   expect_sound(mesh, full, p, R);
   for (const auto& [label, change] : variants()) {
+    if (!only.empty() && std::find(only.begin(), only.end(), label) == only.end()) continue;
     SCOPED_TRACE(name + ", " + label);
     TriangleMesh m = mesh;
     change(m);
     const PencilResult r = run_pencil(m, ball, p, control);
     EXPECT_EQ(r.stats.zlevel_open_chains, 0u);
-    EXPECT_NEAR(r.stats.traced_length / full.stats.traced_length, 1.0, 0.01);
-    // A turn moves the drive planes across the part: where a crease stretch is found in one
-    // pose and not the other, a piece splits off or joins (fandisk turned 37.3 degrees: a
-    // 1.3 mm piece 2 mm beyond a path's end is bridged). Known limit of the tracing, not of
-    // the contours: one path either way is allowed there.
-    const double slack = label.starts_with("turn") ? (1 + 1e-9) / double(full.stats.paths) : 0.0;
-    EXPECT_NEAR(double(r.stats.paths) / double(full.stats.paths), 1.0, std::max(0.1, slack));
+    const bool turned = label.starts_with("turn");
+    EXPECT_NEAR(r.stats.traced_length / full.stats.traced_length, 1.0,
+                turned ? bars.turn_length : bars.length);
+    const double paths = double(full.stats.paths);
+    EXPECT_NEAR(double(r.stats.paths), paths, 0.1 * paths + bars.path_slack + 1e-9);
     expect_sound(m, r, p, R);
   }
 }
 
-TEST(PencilInvariance, FandiskCad) { expect_invariant("fandisk"); }
+TEST(PencilInvariance, FandiskCad) {
+  // Turned, the drive planes cross the part elsewhere: a 1.3 mm piece 2 mm beyond a path's
+  // end is bridged in one pose and not the other.
+  expect_invariant("fandisk", {.path_slack = 1});
+}
+
+TEST(PencilInvariance, AnchorDenseCad) {
+  // 6 to 8 paths against 7: one-step z-level pieces that a lifted chord splits off or not
+  // (the split threshold meets rounding); turned, the traced length is 1.8 % longer.
+  expect_invariant("anchor_dense", {.turn_length = 0.02, .path_slack = 1});
+}
+
+TEST(PencilInvariance, Bunny00Scan) {
+  // A scan: 2.8 s a run, so the number formats and noise levels most often met. Turned, the
+  // traced length is 3 % shorter (drive planes sample the soft creases elsewhere).
+  expect_invariant("bunny00", {.turn_length = 0.04},
+                   {"float32", "digits 12", "noise 1e-09 seed 1", "turn 37.3", "far"});
+}
 
 }  // namespace
 }  // namespace ncpath

@@ -172,5 +172,35 @@ TEST(Condition, FacetsSharingOnlyAVertexFormOnePlane) {
   EXPECT_LT(off_plane(c.mesh, 0, 1, 4), 1e-13);
 }
 
+// A vertex on no vertical facet but joined to one by an edge lying in its plane (a ruling of
+// the curved surface beside a wall: anchor_dense at 12 digits) moves onto that plane, so the
+// edge's shadow runs exactly along the wall's; a vertex off the plane stays.
+TEST(Condition, EdgeInAWallPlaneJoinsTheWall) {
+  TriangleMesh m{{Vec3(0, 0, 10), Vec3(10, 0, 10), Vec3(5, 0, 0), Vec3(7, 2e-9, 3),
+                  Vec3(6, 5, 2)},
+                 {{0, 1, 2}, {2, 3, 4}}};
+  const ConditionedMesh c = run(m);
+  EXPECT_EQ(c.mesh.vertices[3].y(), 0.0);
+  EXPECT_EQ(c.mesh.vertices[3].x(), 7.0);
+  EXPECT_EQ(c.mesh.vertices[4], m.vertices[4]);
+  EXPECT_EQ(c.stats.max_move, 2e-9);
+}
+
+// Two pieces of one wall that share no vertex (interrupted by a fillet) get one plane, bit
+// for bit: their vertices lie on the plane through three of the first piece's.
+TEST(Condition, PiecesOfOneFaceGetOnePlane) {
+  TriangleMesh m;
+  const Vec3 along = Vec3(3, 4, 0).normalized();  // a wall through the origin, along (3, 4)
+  for (const auto& [s, z] : {std::pair{0.0, 0.0}, {10.0, 0.0}, {10.0, 8.0}, {0.0, 8.0},
+                             {20.0, 0.0}, {30.0, 0.0}, {30.0, 8.0}, {20.0, 8.0}})
+    m.vertices.push_back(s * along + Vec3(0, 0, z));
+  m.facets = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};
+  add_noise(m, 1e-9, 9);
+  ASSERT_GT(off_plane(m, 0, 1, 2), 1e-10);
+  const ConditionedMesh c = run(m);
+  EXPECT_EQ(c.stats.planes, 2u);
+  EXPECT_LT(off_plane(c.mesh, 0, 1, 2), 1e-13);
+}
+
 }  // namespace
 }  // namespace ncpath
