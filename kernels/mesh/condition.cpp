@@ -30,10 +30,11 @@ bool facet_normal(const TriangleMesh& m, std::uint32_t f, Vec3& n) {
 }
 
 // The plane fitted to the facets added so far: area-weighted normals (turned to agree with
-// the first) and area-weighted centroids.
+// the first) and area-weighted centroids; `plane` is kept up to date.
 struct PlaneFit {
   Vec3 normal_sum = Vec3::Zero(), centroid_sum = Vec3::Zero();
   double area = 0;
+  Plane plane;
   void add(const TriangleMesh& m, std::uint32_t f, const Vec3& cross) {
     const auto& t = m.facets[f];
     const double a = 0.5 * cross.norm();
@@ -41,12 +42,8 @@ struct PlaneFit {
     normal_sum += area > 0 && cross.dot(normal_sum) < 0 ? -0.5 * cross : 0.5 * cross;
     centroid_sum += a * c;
     area += a;
-  }
-  Plane plane() const {
-    Plane p;
-    p.n = normal_sum.normalized();
-    p.c = p.n.dot(centroid_sum / area);
-    return p;
+    plane.n = normal_sum.normalized();
+    plane.c = plane.n.dot(centroid_sum / area);
   }
 };
 
@@ -143,12 +140,12 @@ Clusters find_clusters(const TriangleMesh& m, const Around& around, ConditionSta
     fit.add(m, seed, cross[seed]);
     grow(seed, m, around, mark, ++stamp,
          [&](std::uint32_t g) {
-           if (!facet_near(m, g, fit.plane())) return false;
+           if (!facet_near(m, g, fit.plane)) return false;
            fit.add(m, g, cross[g]);
            return true;
          },
          free, members);
-    Plane p = fit.plane();
+    const Plane p = fit.plane;
     if (members.size() > 1)  // held fixed: every member within kConditionPlane of it
       grow(seed, m, around, mark, ++stamp, [&](std::uint32_t g) { return facet_near(m, g, p); }, free,
            members);
