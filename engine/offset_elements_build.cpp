@@ -36,7 +36,10 @@ ConditionedMesh condition_for_slicing(const TriangleMesh& input) {
     const auto& f = input.facets[i];
     mesh.facets[i] = {rep[f[0]], rep[f[1]], rep[f[2]]};
   });
-  return condition_mesh(mesh);
+  return condition_mesh(mesh, [](std::size_t n,
+                                 const std::function<void(std::size_t, std::size_t)>& body) {
+    par::for_ranges(n, 4096, body);
+  });
 }
 
 OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double radius,

@@ -124,33 +124,83 @@ struct Clusters {
   std::vector<std::uint8_t> binding;
 };
 
-Clusters find_clusters(const TriangleMesh& m, const Around& around, ConditionStats& st) {
+void run_ranges(const RangeRunner& ranges, std::size_t n,
+                const std::function<void(std::size_t, std::size_t)>& body) {
+  if (ranges)
+    ranges(n, body);
+  else
+    body(0, n);
+}
+
+// The plane of one facet (as PlaneFit gives it for the facet alone).
+Plane facet_plane(const TriangleMesh& m, std::uint32_t f, const Vec3& cross) {
+  PlaneFit fit;
+  fit.add(m, f, cross);
+  return fit.plane;
+}
+
+Clusters find_clusters(const TriangleMesh& m, const Around& around, const RangeRunner& ranges,
+                       ConditionStats& st) {
   const auto nf = std::uint32_t(m.facets.size());
   Clusters cl;
   cl.of_facet.assign(nf, kNone);
   std::vector<Vec3> cross(nf);
-  std::vector<std::uint8_t> usable(nf);
-  for (std::uint32_t f = 0; f < nf; ++f) usable[f] = facet_normal(m, f, cross[f]);
+  std::vector<std::uint8_t> usable(nf), lone(nf);
+  run_ranges(ranges, nf, [&](std::size_t b, std::size_t e) {
+    for (auto f = std::uint32_t(b); f < e; ++f) usable[f] = facet_normal(m, f, cross[f]);
+  });
+  // A facet with no usable facet around it near its own plane grows no cluster from itself
+  // (the first step of the growth below, done here for all facets at once, with its snap).
+  struct Single {
+    Plane snapped;
+    bool moved = false;
+  };
+  std::vector<Single> single(nf);
+  run_ranges(ranges, nf, [&](std::size_t b, std::size_t e) {
+    std::vector<std::uint32_t> one(1);
+    for (auto f = std::uint32_t(b); f < e; ++f) {
+      if (!usable[f]) continue;
+      const Plane p = facet_plane(m, f, cross[f]);
+      bool alone = true;
+      for (std::uint32_t v : m.facets[f])
+        for (std::uint32_t k = around.start[v]; alone && k < around.start[v + 1]; ++k) {
+          const std::uint32_t g = around.ids[k];
+          alone = g == f || !usable[g] || !facet_near(m, g, p);
+        }
+      lone[f] = alone;
+      if (!alone) continue;
+      one[0] = f;
+      const Plane snapped = snap_to_axis(m, one, p);
+      single[f] = {snapped, snapped.n != p.n};
+    }
+  });
   std::vector<std::uint32_t> mark(nf, 0), members;
   std::uint32_t stamp = 0;
   auto free = [&](std::uint32_t g) { return usable[g] && cl.of_facet[g] == kNone; };
+  cl.plane.reserve(nf);
+  cl.binding.reserve(nf);
   for (std::uint32_t seed = 0; seed < nf; ++seed) {
     if (!free(seed)) continue;
-    PlaneFit fit;
-    fit.add(m, seed, cross[seed]);
-    grow(seed, m, around, mark, ++stamp,
-         [&](std::uint32_t g) {
-           if (!facet_near(m, g, fit.plane)) return false;
-           fit.add(m, g, cross[g]);
-           return true;
-         },
-         free, members);
-    const Plane p = fit.plane;
-    if (members.size() > 1)  // held fixed: every member within kConditionPlane of it
-      grow(seed, m, around, mark, ++stamp, [&](std::uint32_t g) { return facet_near(m, g, p); }, free,
-           members);
-    const Plane snapped = snap_to_axis(m, members, p);
-    const bool moved = snapped.n != p.n;
+    members.assign(1, seed);
+    Plane snapped = single[seed].snapped;
+    bool moved = single[seed].moved;
+    if (!lone[seed]) {
+      PlaneFit fit;
+      fit.add(m, seed, cross[seed]);
+      grow(seed, m, around, mark, ++stamp,
+           [&](std::uint32_t g) {
+             if (!facet_near(m, g, fit.plane)) return false;
+             fit.add(m, g, cross[g]);
+             return true;
+           },
+           free, members);
+      const Plane p = fit.plane;
+      if (members.size() > 1)  // held fixed: every member within kConditionPlane of it
+        grow(seed, m, around, mark, ++stamp, [&](std::uint32_t g) { return facet_near(m, g, p); },
+             free, members);
+      snapped = snap_to_axis(m, members, p);
+      moved = snapped.n != p.n;
+    }
     const auto id = std::uint32_t(cl.plane.size());
     for (std::uint32_t f : members) cl.of_facet[f] = id;
     cl.plane.push_back(snapped);
@@ -274,40 +324,45 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> vertical_extensions(
 
 }  // namespace
 
-ConditionedMesh condition_mesh(const TriangleMesh& mesh) {
+ConditionedMesh condition_mesh(const TriangleMesh& mesh, const RangeRunner& ranges) {
   ConditionedMesh out;
   out.mesh = mesh;
   const Around around = facets_around(mesh);
-  Clusters cl = find_clusters(mesh, around, out.stats);
+  Clusters cl = find_clusters(mesh, around, ranges, out.stats);
   const auto facets = cluster_facets(mesh, cl);
   unify_planes(mesh, facets, cl);
   const auto extended = vertical_extensions(mesh, around, cl, facets);
   const std::size_t nv = mesh.vertices.size();
-  std::vector<std::uint32_t> ids;
-  std::vector<const Plane*> planes;
+  std::vector<std::uint8_t> kept(nv, 0);
+  run_ranges(ranges, nv, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::uint32_t> ids;
+    std::vector<const Plane*> planes;
+    for (auto v = std::uint32_t(begin); v < end; ++v) {
+      ids.clear();
+      for (std::uint32_t k = around.start[v]; k < around.start[v + 1]; ++k)
+        if (const std::uint32_t c = cl.of_facet[around.ids[k]]; c != kNone && cl.binding[c])
+          ids.push_back(c);
+      for (auto it = std::lower_bound(extended.begin(), extended.end(), std::pair(v, 0u));
+           it != extended.end() && it->first == v; ++it)
+        ids.push_back(it->second);
+      if (ids.empty()) continue;
+      std::sort(ids.begin(), ids.end());
+      planes.clear();
+      for (auto it = ids.begin(); it != ids.end(); it = std::upper_bound(it, ids.end(), *it))
+        planes.push_back(&cl.plane[*it]);
+      Vec3 moved;
+      if (move_onto(mesh.vertices[v], planes, moved))
+        out.mesh.vertices[v] = moved;
+      else
+        kept[v] = 1;
+    }
+  });
   for (std::size_t v = 0; v < nv; ++v) {
-    ids.clear();
-    for (std::uint32_t k = around.start[v]; k < around.start[v + 1]; ++k)
-      if (const std::uint32_t c = cl.of_facet[around.ids[k]]; c != kNone && cl.binding[c])
-        ids.push_back(c);
-    for (auto it = std::lower_bound(extended.begin(), extended.end(), std::pair(std::uint32_t(v), 0u));
-         it != extended.end() && it->first == v; ++it)
-      ids.push_back(it->second);
-    if (ids.empty()) continue;
-    std::sort(ids.begin(), ids.end());
-    const auto b = ids.begin(), e = ids.end();
-    planes.clear();
-    for (auto it = b; it != e; it = std::upper_bound(it, e, *it)) planes.push_back(&cl.plane[*it]);
-    Vec3 moved;
-    if (move_onto(out.mesh.vertices[v], planes, moved))
-      out.mesh.vertices[v] = moved;
-    else
-      ++out.stats.kept_vertices;
-  }
-  for (std::size_t v = 0; v < nv; ++v) {
+    out.stats.kept_vertices += kept[v];
     if (out.mesh.vertices[v] == mesh.vertices[v]) continue;
     ++out.stats.moved_vertices;
-    out.stats.max_move = std::max(out.stats.max_move, (out.mesh.vertices[v] - mesh.vertices[v]).norm());
+    out.stats.max_move =
+        std::max(out.stats.max_move, (out.mesh.vertices[v] - mesh.vertices[v]).norm());
   }
   return out;
 }

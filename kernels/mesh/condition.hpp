@@ -36,7 +36,9 @@
 //
 // Deterministic: clusters are grown from the lowest facet index, the facets around a vertex
 // visited in index order.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "kernels/mesh/triangle_mesh.hpp"
@@ -57,8 +59,14 @@ struct ConditionedMesh {
   ConditionStats stats;
 };
 
+// Runs body(begin, end) over ranges covering [0, n), possibly in parallel (the engine passes
+// its TBB loop; kernels stay free of threads). Empty: one range, sequentially.
+using RangeRunner =
+    std::function<void(std::size_t n, const std::function<void(std::size_t, std::size_t)>& body)>;
+
 // The conditioned mesh (see above). The mesh must be welded (shared vertices by index:
-// engine/offset_elements_build.hpp condition_for_slicing welds exact duplicates first).
-ConditionedMesh condition_mesh(const TriangleMesh& mesh);
+// engine/offset_elements_build.hpp condition_for_slicing welds exact duplicates first). The
+// per-facet and per-vertex passes go through `ranges`; the result does not depend on it.
+ConditionedMesh condition_mesh(const TriangleMesh& mesh, const RangeRunner& ranges = {});
 
 }  // namespace ncpath
