@@ -1,14 +1,7 @@
 // Representation invariance of the pencil-cut (issue 17, item 1), measured: one part written
 // the ways exporters write it must give the same answer. For each mesh (fit to 200 mm in xy,
-// ball 5 mm), the same pencil job on variants of its vertices, all in mm after the fit:
-//   full      the coordinates as read (double)
-//   float32   each coordinate rounded to float (binary STL)
-//   digits N  each coordinate rounded to N significant decimal digits (ASCII STL / OFF)
-//   noise E   each coordinate moved by a uniform amount in [-E, E] (seeded, mt19937_64 bits)
-//   turn A    turned about z by A degrees around the box centre
-//   far       translated by (1000, 1000, 0) mm
-//   reversed  every facet's winding reversed
-// and prints paths, traced length, open z-level chains, the ratios to `full` and the largest
+// ball 5 mm), the same pencil job on the full-precision vertices and on the variants the
+// tests use (tests/support/representation_variants.hpp), and prints paths, traced length, open z-level chains, the ratios to `full` and the largest
 // vertex move of the input conditioning: the issue's bar is 0 open chains, length within 1 %,
 // paths within 10 %.
 //
@@ -17,80 +10,18 @@
 // Without --mesh: fandisk and anchor_dense (datasets/cache/meshes).
 #include <CLI/CLI.hpp>
 
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <functional>
-#include <numbers>
-#include <random>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "batch/io/mesh_reader.hpp"
 #include "engine/parallel.hpp"
 #include "engine/pencil.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
+#include "tests/support/representation_variants.hpp"
 
 using namespace ncpath;
-
-namespace {
-
-using Variant = std::pair<std::string, std::function<void(TriangleMesh&)>>;
-
-void each_coordinate(TriangleMesh& m, const std::function<double(double)>& f) {
-  for (Vec3& v : m.vertices)
-    for (int k = 0; k < 3; ++k) v[k] = f(v[k]);
-}
-
-double round_digits(double x, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return std::strtod(buf, nullptr);
-}
-
-std::vector<Variant> variants() {
-  std::vector<Variant> out;
-  out.push_back({"full", [](TriangleMesh&) {}});
-  out.push_back({"float32", [](TriangleMesh& m) {
-                   each_coordinate(m, [](double x) { return double(static_cast<float>(x)); });
-                 }});
-  for (int digits : {6, 9, 12, 15, 17})
-    out.push_back({"digits " + std::to_string(digits), [digits](TriangleMesh& m) {
-                     each_coordinate(m, [digits](double x) { return round_digits(x, digits); });
-                   }});
-  for (double e : {1e-13, 1e-11, 1e-9, 1e-7}) {
-    char name[32];
-    std::snprintf(name, sizeof name, "noise %.0e", e);
-    out.push_back({name, [e](TriangleMesh& m) {
-                     std::mt19937_64 bits(17);
-                     each_coordinate(m, [&](double x) {
-                       const double u = static_cast<double>(bits() >> 11) * 0x1.0p-53;  // [0, 1)
-                       return x + e * (2 * u - 1);
-                     });
-                   }});
-  }
-  out.push_back({"turn 37", [](TriangleMesh& m) {
-                   const Aabb3 box = bounding_box(m);
-                   const Vec3 c = 0.5 * (box.lo + box.hi);
-                   const double a = 37 * std::numbers::pi / 180, ca = std::cos(a), sa = std::sin(a);
-                   for (Vec3& v : m.vertices) {
-                     const double x = v.x() - c.x(), y = v.y() - c.y();
-                     v.x() = c.x() + ca * x - sa * y;
-                     v.y() = c.y() + sa * x + ca * y;
-                   }
-                 }});
-  out.push_back({"far", [](TriangleMesh& m) {
-                   for (Vec3& v : m.vertices) v += Vec3(1000, 1000, 0);
-                 }});
-  out.push_back({"reversed", [](TriangleMesh& m) {
-                   for (auto& f : m.facets) std::swap(f[1], f[2]);
-                 }});
-  return out;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"ncpath pencil-cut representation invariance"};
@@ -119,7 +50,9 @@ int main(int argc, char** argv) {
     tr.fit_xy_mm = fit_xy;
     apply_transform(tr, in.mesh);
     double full_paths = 0, full_length = 0;
-    for (const auto& [name, change] : variants()) {
+    std::vector<test::Variant> all = test::representation_variants();
+    all.insert(all.begin(), {"full", [](TriangleMesh&) {}});
+    for (const auto& [name, change] : all) {
       TriangleMesh m = in.mesh;
       change(m);
       PencilParams p;

@@ -233,6 +233,16 @@ inline constexpr double kConditionPlane = 3e-6;
 // as given.
 inline constexpr double kConditionMove = 6e-6;
 
+// Dimensionless (relative singular value). Planes whose normals span a direction this weakly
+// (about 0.06 degrees apart) count as one direction when a vertex is moved onto several by
+// least squares: it then lies between them instead of far off on their crossing.
+inline constexpr double kConditionParallel = 1e-3;
+
+// Dimensionless (difference of unit normals). Clusters whose offsets agree within twice
+// kConditionPlane but whose normals differ by more than this are not one face
+// (condition.cpp unify_planes; the distance of every vertex decides the rest).
+inline constexpr double kConditionSameNormal = 1e-4;
+
 // Dimensionless (times R). A slice point of a cylinder or sphere counts as inside its
 // wedge / ring cone (the ball there would not cut into a facet) up to this much penetration.
 inline constexpr double kTrimSlack = 1e-12;

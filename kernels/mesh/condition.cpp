@@ -4,7 +4,6 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <utility>
 
 #include "kernels/geom/tolerance.hpp"
@@ -228,7 +227,7 @@ bool move_onto(const Vec3& v, const std::vector<const Plane*>& planes, Vec3& out
       r[Eigen::Index(i)] = planes[i]->c - planes[i]->n.dot(v);
     }
     Eigen::JacobiSVD<Eigen::MatrixX3d> svd(n, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    svd.setThreshold(1e-3);  // planes within ~0.06 degrees: one direction, averaged
+    svd.setThreshold(tol::kConditionParallel);
     d = svd.solve(r);
   }
   if (!(d.norm() <= tol::kConditionMove)) return false;
@@ -249,42 +248,44 @@ std::vector<std::vector<std::uint32_t>> cluster_facets(const TriangleMesh& m, co
 // Binding clusters whose planes coincide (every vertex of the later one within
 // kConditionPlane of the earlier one's plane) take the earlier one's plane, bit for bit:
 // pieces of one face that share no vertex (a wall interrupted by a fillet) then have exactly
-// one plane, and their edges' shadows coincide. Candidates are found by the plane's
-// orientation-independent normal, sorted on its x component.
+// one plane, and their edges' shadows coincide. Candidates are found by the plane's offset
+// (sorted; orientation made canonical) and compared by normal; clusters go in id order, so
+// each takes the final plane of the lowest one it matches.
 void unify_planes(const TriangleMesh& m, const std::vector<std::vector<std::uint32_t>>& facets,
                   Clusters& cl) {
-  auto canonical = [](const Plane& p) {
-    const Vec3& n = p.n;
-    const bool flip = n.z() < 0 || (n.z() == 0 && (n.y() < 0 || (n.y() == 0 && n.x() < 0)));
-    return std::pair(flip ? Vec3(-n) : n, flip ? -p.c : p.c);
-  };
+  const std::size_t k = cl.plane.size();
+  std::vector<Vec3> n(k);
+  std::vector<double> off(k);
   std::vector<std::uint32_t> order;
-  for (std::uint32_t c = 0; c < cl.plane.size(); ++c)
-    if (!facets[c].empty()) order.push_back(c);
-  std::vector<Vec3> n(cl.plane.size());
-  std::vector<double> off(cl.plane.size());
-  for (std::uint32_t c : order) std::tie(n[c], off[c]) = canonical(cl.plane[c]);
+  for (std::uint32_t c = 0; c < k; ++c) {
+    if (facets[c].empty()) continue;
+    const Plane& p = cl.plane[c];
+    const bool flip = p.n.z() < 0 || (p.n.z() == 0 && (p.n.y() < 0 || (p.n.y() == 0 && p.n.x() < 0)));
+    n[c] = flip ? Vec3(-p.n) : p.n;
+    off[c] = flip ? -p.c : p.c;
+    order.push_back(c);
+  }
+  const std::vector<std::uint32_t> ids = order;  // ascending
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return n[a].x() != n[b].x() ? n[a].x() < n[b].x() : a < b;
+    return off[a] != off[b] ? off[a] < off[b] : a < b;
   });
-  constexpr double kWindow = 1e-4;  // normals of coinciding planes agree far closer
+  std::vector<std::size_t> pos(k);
+  for (std::size_t i = 0; i < order.size(); ++i) pos[order[i]] = i;
+  const double window = 2 * tol::kConditionPlane;
   auto fits = [&](std::uint32_t c, const Plane& p) {
     for (std::uint32_t f : facets[c])
       for (std::uint32_t v : m.facets[f])
         if (std::abs(p.n.dot(m.vertices[v]) - p.c) > tol::kConditionPlane) return false;
     return true;
   };
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const std::uint32_t b = order[i];
+  for (const std::uint32_t b : ids) {
+    std::size_t lo = pos[b], hi = pos[b] + 1;
+    while (lo > 0 && off[b] - off[order[lo - 1]] <= window) --lo;
+    while (hi < order.size() && off[order[hi]] - off[b] <= window) ++hi;
     std::uint32_t best = b;
-    for (std::size_t j = i; j-- > 0 && n[b].x() - n[order[j]].x() <= kWindow;)
-      if (const std::uint32_t a = order[j]; a < best && (n[a] - n[b]).norm() <= kWindow &&
-                                            std::abs(off[a] - off[b]) <= 2 * tol::kConditionPlane)
-        best = a;
-    for (std::size_t j = i + 1; j < order.size() && n[order[j]].x() - n[b].x() <= kWindow; ++j)
-      if (const std::uint32_t a = order[j]; a < best && (n[a] - n[b]).norm() <= kWindow &&
-                                            std::abs(off[a] - off[b]) <= 2 * tol::kConditionPlane)
-        best = a;
+    for (std::size_t j = lo; j < hi; ++j)
+      if (order[j] < best && (n[order[j]] - n[b]).norm() <= tol::kConditionSameNormal)
+        best = order[j];
     if (best != b && fits(b, cl.plane[best])) cl.plane[b] = cl.plane[best];
   }
 }

@@ -11,72 +11,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <functional>
 #include <numbers>
-#include <random>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "engine/fillet.hpp"
 #include "engine/pencil.hpp"
 #include "kernels/mesh/closest_point.hpp"
 #include "tests/engine/mesh_test_support.hpp"
+#include "tests/support/representation_variants.hpp"
 
 namespace ncpath {
 namespace {
-
-using Variant = std::pair<std::string, std::function<void(TriangleMesh&)>>;
-
-void each_coordinate(TriangleMesh& m, const std::function<double(double)>& f) {
-  for (Vec3& v : m.vertices)
-    for (int k = 0; k < 3; ++k) v[k] = f(v[k]);
-}
-
-double round_digits(double x, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
-  return std::strtod(buf, nullptr);
-}
-
-std::string noise_label(double e, unsigned seed) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "noise %.0e seed %u", e, seed);
-  return buf;
-}
-
-std::vector<Variant> variants() {
-  std::vector<Variant> out;
-  out.push_back({"float32", [](TriangleMesh& m) {
-                   each_coordinate(m, [](double x) { return double(static_cast<float>(x)); });
-                 }});
-  for (int digits : {6, 9, 12, 15, 17})
-    out.push_back({"digits " + std::to_string(digits), [digits](TriangleMesh& m) {
-                     each_coordinate(m, [digits](double x) { return round_digits(x, digits); });
-                   }});
-  for (double e : {1e-13, 1e-11, 1e-9, 1e-7})
-    for (unsigned seed : {1u, 2u})
-      out.push_back({noise_label(e, seed),
-                     [e, seed](TriangleMesh& m) {
-                       std::mt19937_64 bits(seed);
-                       std::uniform_real_distribution<double> u(-e, e);
-                       each_coordinate(m, [&](double x) { return x + u(bits); });
-                     }});
-  out.push_back({"turn 37.3", [](TriangleMesh& m) {
-                   const double a = 37.3 * std::numbers::pi / 180;
-                   const double ca = std::cos(a), sa = std::sin(a);
-                   for (Vec3& v : m.vertices) v = Vec3(ca * v.x() - sa * v.y(), sa * v.x() + ca * v.y(), v.z());
-                 }});
-  out.push_back({"far", [](TriangleMesh& m) {
-                   for (Vec3& v : m.vertices) v += Vec3(1000, -1000, 0);
-                 }});
-  out.push_back({"reversed", [](TriangleMesh& m) {
-                   for (auto& f : m.facets) std::swap(f[1], f[2]);
-                 }});
-  return out;
-}
 
 // Largest angle between the directions from the part's contacts to the ball centre c: the
 // closest points of facets within R + reach of c (brute force over all facets).
@@ -130,7 +76,7 @@ void expect_invariant(const std::string& name, const Bars& bars,
   ASSERT_EQ(full.stats.zlevel_open_chains, 0u);
   ASSERT_GT(full.stats.paths, 0u);
   expect_sound(mesh, full, p, R);
-  for (const auto& [label, change] : variants()) {
+  for (const auto& [label, change] : test::representation_variants()) {
     if (!only.empty() && std::find(only.begin(), only.end(), label) == only.end()) continue;
     SCOPED_TRACE(name + ", " + label);
     TriangleMesh m = mesh;
@@ -175,7 +121,7 @@ TEST(FilletInvariance, FandiskCad) {
   RunControl control;
   const FilletResult full = run_fillet(mesh, ball, p, control);
   ASSERT_GT(full.stats.passes, 0u);
-  for (const auto& [label, change] : variants()) {
+  for (const auto& [label, change] : test::representation_variants()) {
     if (label != "float32" && label != "digits 12" && label != "noise 1e-09 seed 1" &&
         label != "far" && label != "turn 37.3")
       continue;

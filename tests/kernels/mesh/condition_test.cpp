@@ -16,27 +16,10 @@
 
 #include "kernels/geom/tolerance.hpp"
 #include "kernels/mesh/subdivide.hpp"
+#include "tests/support/meshes.hpp"
 
 namespace ncpath {
 namespace {
-
-// An n x n grid of squares (two facets each) on z = f(x, y), x, y in [0, size].
-template <class F>
-TriangleMesh grid(int n, double size, F f) {
-  TriangleMesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double x = size * i / n, y = size * j / n;
-      m.vertices.emplace_back(x, y, f(x, y));
-    }
-  auto id = [n](int i, int j) { return std::uint32_t(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
-}
 
 void add_noise(TriangleMesh& m, double e, unsigned seed) {
   std::mt19937_64 bits(seed);
@@ -65,7 +48,8 @@ double off_plane(const TriangleMesh& m, std::uint32_t i, std::uint32_t j, std::u
 
 TEST(Condition, NoisySlopedPlaneBecomesOnePlane) {
   for (double noise : {1e-12, 1e-10, 1e-8, 1e-6}) {
-    TriangleMesh m = grid(12, 60, [](double x, double y) { return 5 + 0.3 * x - 0.2 * y; });
+    TriangleMesh m =
+        test::height_field(12, 60, [](double x, double y) { return 5 + 0.3 * x - 0.2 * y; });
     add_noise(m, noise, 7);
     ASSERT_GT(off_plane(m, 0, 12, 168), 0.3 * noise);
     const ConditionedMesh c = run(m);
@@ -135,7 +119,7 @@ TEST(Condition, NearlyVerticalWallBecomesVertical) {
 // Curved surfaces bend far beyond the tolerance: nothing merges, nothing moves, also with
 // noise 1e-9 on them.
 TEST(Condition, CurvedSurfaceIsLeftAlone) {
-  const TriangleMesh dome = grid(20, 20, [](double x, double y) {
+  const TriangleMesh dome = test::height_field(20, 20, [](double x, double y) {
     return std::sqrt(225 - (x - 10) * (x - 10) - (y - 10) * (y - 10));
   });
   for (double noise : {0.0, 1e-9}) {
@@ -150,7 +134,7 @@ TEST(Condition, CurvedSurfaceIsLeftAlone) {
 
 // Exactly planar input (dyadic coordinates on z = 1) is already conditioned: unchanged.
 TEST(Condition, ExactPlaneIsUnchanged) {
-  const TriangleMesh m = grid(8, 16, [](double, double) { return 1.0; });
+  const TriangleMesh m = test::height_field(8, 16, [](double, double) { return 1.0; });
   const ConditionedMesh c = run(m);
   EXPECT_EQ(c.stats.planes, 1u);
   EXPECT_EQ(c.mesh.vertices, m.vertices);
