@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   par::ThreadLimit limit(threads);
   std::printf("ball 5 mm, fit %g mm, interval %g mm, step-down %g mm, %d threads\n", fit_xy,
               interval, step_down, threads);
-  std::printf("%-18s %-12s %6s %10s %12s %9s %9s %9s %7s\n", "mesh", "variant", "paths",
+  std::printf("%-18s %-19s %6s %10s %12s %9s %9s %9s %7s\n", "mesh", "variant", "paths",
               "length mm", "open chains", "paths/full", "len/full", "moved mm", "s");
   for (const std::string& path : meshes) {
     io::MeshReadResult in = io::read_mesh(path);
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
         full_paths = static_cast<double>(s.paths);
         full_length = s.traced_length;
       }
-      std::printf("%-18s %-12s %6llu %10.1f %12llu %9.3f %9.4f %9.1e %7.2f\n",
+      std::printf("%-18s %-19s %6llu %10.1f %12llu %9.3f %9.4f %9.1e %7.2f\n",
                   std::filesystem::path(path).filename().c_str(), name.c_str(),
                   (unsigned long long)s.paths, s.traced_length,
                   (unsigned long long)s.zlevel_open_chains, s.paths / std::max(1.0, full_paths),
