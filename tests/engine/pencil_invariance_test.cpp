@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/fillet.hpp"
+#include "engine/parallel.hpp"
 #include "engine/pencil.hpp"
 #include "kernels/mesh/closest_point.hpp"
 #include "tests/engine/mesh_test_support.hpp"
@@ -109,6 +110,30 @@ TEST(PencilInvariance, Bunny00Scan) {
   // traced length is 3 % shorter (drive planes sample the soft creases elsewhere).
   expect_invariant("bunny00", {.turn_length = 0.04},
                    {"float32", "digits 12", "noise 1e-09 seed 1", "turn 37.3", "far"});
+}
+
+// The conditioning runs its passes in parallel: on a part it changes (fandisk with noise 1e-9,
+// 462 planar clusters), 1 and 2 threads give the same paths and pencil points, bit for bit.
+TEST(PencilInvariance, OneAndTwoThreadsGiveIdenticalPathsOnANoisyPart) {
+  TriangleMesh mesh = test_meshes::load("fandisk");
+  for (const auto& [label, change] : test::representation_variants())
+    if (label == "noise 1e-09 seed 1") change(mesh);
+  const PencilParams p;
+  RunControl control;
+  PencilResult one, two;
+  {
+    par::ThreadLimit limit(1);
+    one = run_pencil(mesh, ball_cutter(5), p, control);
+  }
+  {
+    par::ThreadLimit limit(2);
+    two = run_pencil(mesh, ball_cutter(5), p, control);
+  }
+  EXPECT_GT(one.stats.condition.planes, 100u);
+  EXPECT_EQ(one.paths, two.paths);
+  ASSERT_EQ(one.points.size(), two.points.size());
+  for (std::size_t k = 0; k < one.points.size(); ++k)
+    EXPECT_EQ(one.points[k].position, two.points[k].position) << k;
 }
 
 // The fillet-cut follows the reference ball's pencil paths (the same conditioned slicing): its
