@@ -10,6 +10,7 @@
 #include "engine/facet_table.hpp"
 #include "engine/mesh_distance.hpp"
 #include "engine/parallel.hpp"
+#include "engine/pencil_crease.hpp"
 #include "engine/scan.hpp"
 #include "engine/surface_check.hpp"
 #include "engine/zlevel.hpp"
@@ -49,88 +50,7 @@ std::string validate(const PencilParams& p) {
 
 namespace {
 
-constexpr double kMinCos = 0.7;  // tangents of linked crease points within ~45 degrees
-
 Vec3 tangent_of(const PencilCandidate& c) { return crease_tangent(c.b1, c.b2); }
-
-// Exact crease point between A and B on the drive plane halfway between their layers, near
-// the chord's middle; false when that plane has none there.
-bool crease_between(const ScanElements& se, const PencilCandidate& a, const PencilCandidate& b,
-                    double min_angle, double floor_z, PencilCandidate& out) {
-  const int f = a.family;
-  const Vec3 n = layer_normal(a.family);
-  const double v = 0.5 * (a.p.dot(n) + b.p.dot(n));
-  const Vec3 mid = 0.5 * (a.p + b.p);
-  const double w = std::max(0.5 * (b.p - a.p).norm(), 0.05);
-  const double u = f == 0 ? mid.x() : mid.y();
-  const Vec3 ta = tangent_of(a);
-  double best = w;
-  bool found = false;
-  for (const PlaneJunction& j : plane_junctions(se, f, v, u - w, u + w, floor_z)) {
-    if (j.kind != std::uint8_t(JunctionKind::kSharpConcave) || j.on_floor) continue;
-    if (bicontact_angle(j.b1, j.b2) < min_angle) continue;
-    if (std::abs(crease_tangent(j.b1, j.b2).dot(ta)) < kMinCos) continue;
-    const double d = (j.position - mid).norm();
-    if (d < best) {
-      best = d;
-      out = {j.position, j.b1, j.b2, a.family, a.layer};
-      found = true;
-    }
-  }
-  return found;
-}
-
-// The crease point on the drive plane at v (a's family) where a's tangent line meets it;
-// false when that plane has none near there.
-bool crease_on_plane(const ScanElements& se, const PencilCandidate& a, double v, double min_angle,
-                     double floor_z, PencilCandidate& out) {
-  const Vec3 n = layer_normal(a.family), t = tangent_of(a);
-  if (!(std::abs(t.dot(n)) > 1e-6)) return false;
-  const Vec3 q = a.p + t * ((v - a.p.dot(n)) / t.dot(n));
-  const double w = std::max((q - a.p).norm(), 0.05);
-  const double u = a.family == 0 ? q.x() : q.y();
-  double best = w;
-  bool found = false;
-  for (const PlaneJunction& j : plane_junctions(se, a.family, v, u - w, u + w, floor_z)) {
-    if (j.kind != std::uint8_t(JunctionKind::kSharpConcave) || j.on_floor) continue;
-    if (bicontact_angle(j.b1, j.b2) < min_angle) continue;
-    if (std::abs(crease_tangent(j.b1, j.b2).dot(t)) < kMinCos) continue;
-    const double d = (j.position - q).norm();
-    if (d < best) {
-      best = d;
-      out = {j.position, j.b1, j.b2, a.family, a.layer};
-      found = true;
-    }
-  }
-  return found;
-}
-
-// Where the crease ends between a chain's end and the next layer (which does not see it):
-// bisection over planes up to `spacing` beyond the end, in direction dir (+1 / -1 along the
-// layer normal), staying within [v_min, v_max] (the scanned rectangle). False when it ends at
-// the end layer already.
-bool crease_end(const ScanElements& se, const PencilCandidate& end, double dir, double spacing,
-                double v_min, double v_max, double min_angle, double floor_z,
-                PencilCandidate& out) {
-  const double v0 = end.p.dot(layer_normal(end.family));
-  double lo = 0, hi = std::min(spacing, dir > 0 ? v_max - v0 : v0 - v_min);
-  if (!(hi > 0)) return false;
-  bool found = false;
-  PencilCandidate from = end;
-  for (int it = 0; it < 7; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    PencilCandidate c;
-    if (crease_on_plane(se, from, v0 + dir * mid, min_angle, floor_z, c)) {
-      out = c;
-      from = c;
-      found = true;
-      lo = mid;
-    } else {
-      hi = mid;
-    }
-  }
-  return found;
-}
 
 // Appends the refined points strictly between A and B (A and B excluded).
 // Refined when the chord's error bound exceeds tol or its middle is below the CL surface.
@@ -162,14 +82,10 @@ double polyline_length(const std::vector<Vec3>& p) {
 
 }  // namespace
 
-// The stages for the ball as given, tool tip = centre - radius z (p.stock is not used:
-// run_pencil below grows the ball by it).
+// The stages for the ball as given (validated by run_pencil), tool tip = centre - radius z
+// (p.stock is not used: run_pencil below grows the ball by it).
 static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cutter,
                                      const PencilParams& p, RunControl& control) {
-  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
-  if (cutter.type != CutterType::kBall)
-    throw std::invalid_argument("tool: pencil-cut needs a ball-end mill");
-  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
   PencilResult res;
   PencilStats& st = res.stats;
   const double min_angle = p.min_angle_deg * std::numbers::pi / 180;
@@ -292,7 +208,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     PencilLinkParams lp;
     const double spacing = f == 2 ? p.step_down : p.interval;
     lp.max_gap = 1.5 * spacing + 0.1;
-    lp.min_cos = kMinCos;
+    lp.min_cos = kCreaseMinCos;
     for (const auto& ids : link_layers(kept[f], lp)) {
       Chain c;
       for (std::uint32_t i : ids) {
