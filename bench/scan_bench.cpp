@@ -116,10 +116,8 @@ void BM_ZLevelInside(benchmark::State& state, const std::string& name) {
 }
 
 // A level in anchor_dense's lower part (tip z -70.341, under the overhang of its upper part)
-// with the region of the level 4 mm above, as the engine's chunks have it: computed in full
-// (splice false) or, where only the elements near the flukes' tips change U, computed there
-// and spliced to the region's contours (splice true: ZLevelParams::unfiltered).
-void BM_ZLevelLow(benchmark::State& state, bool splice) {
+// with the region of the level 4 mm above, as the engine's chunks have it.
+void BM_ZLevelLow(benchmark::State& state) {
   const Prepared& p = prepared("anchor_dense");
   const std::vector<std::uint32_t> all = facets_and_edges(p);
   const double z = -70.341;
@@ -129,9 +127,8 @@ void BM_ZLevelLow(benchmark::State& state, bool splice) {
   const ZLevelInside inside =
       zlevel_inside(zlevel_contours(p.el, all, z + 4, params), 0.5 * p.el.radius);
   params.inside = &inside;
-  if (splice) params.unfiltered = all;
   const ZLevelResult r = time_level(state, p, all, z, params);
-  state.counters["spliced"] = double(r.stats.spliced);
+  state.counters["dropped"] = double(r.stats.inside_regions);
 }
 
 BENCHMARK_CAPTURE(BM_ScanPlane, bunny00_trimmed, std::string("bunny00"), true)
@@ -150,8 +147,7 @@ BENCHMARK_CAPTURE(BM_ZLevelInside, bunny00_mid, std::string("bunny00"))
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ZLevelInside, anchor_dense_mid, std::string("anchor_dense"))
     ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ZLevelLow, anchor_dense_full, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ZLevelLow, anchor_dense_spliced, true)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ZLevelLow)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace ncpath

@@ -59,7 +59,7 @@ void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
 struct LevelOut {
   ZLevelChunk chunk;
   std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
-  std::uint64_t unchanged = 0, spliced = 0;
+  std::uint64_t unchanged = 0;
   std::uint64_t kinds[3] = {0, 0, 0};
 };
 
@@ -143,7 +143,6 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     ZLevelParams kp = kernel;
     kp.inside = &inside;
     kp.candidates_filtered = cand == &filtered;
-    kp.unfiltered = std::span<const std::uint32_t>(by_top.data(), prefix(by_top, zk));
     const ZLevelResult r =
         zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), zk, kp);
     if (i + 1 == chunk_end) next_inside = zlevel_inside(r, 0.5 * el.radius);
@@ -151,7 +150,6 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     out.open_chains = r.stats.open_chains;
     out.repaired_links = r.stats.repaired_links;
     out.unchanged = r.stats.unchanged;
-    out.spliced = r.stats.spliced;
     ZLevelChunk& ch = out.chunk;
     std::vector<Vec2> pts;
     for (std::size_t c = 0; c < r.contours.size(); ++c) {
@@ -267,7 +265,6 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       st.open_chains += o.open_chains;
       st.repaired_links += o.repaired_links;
       st.unchanged_levels += o.unchanged;
-      st.spliced_levels += o.spliced;
       st.points += o.points;
     }
   };

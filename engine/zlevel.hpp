@@ -15,9 +15,7 @@
 // steep walls most elements above a level are such: anchor_large at 1 mm steps, 20.8 s ->
 // about 7 s (docs/performance.md). Where every element reaching a level lies above the
 // region's level or inside it (under an overhang), the kernel copies the region's contours
-// (ZLevelOpStats::unchanged_levels; 22 of anchor_large's 171 levels); where the others lie
-// in a few narrow x-slabs, it computes the contours there from the unfiltered candidates and
-// splices them to the region's (spliced_levels; 40 more).
+// (ZLevelOpStats::unchanged_levels; 22 of anchor_large's 171 levels).
 //
 // Polylines: lines exactly; an arc (circle or ellipse, centre c, axes r1 a and r2 a_perp) by
 // the polygon circumscribed to it in its affine frame: vertices at t0 + (j - 1/2) dt scaled by
@@ -89,9 +87,6 @@ struct ZLevelOpStats {
   // Levels whose contours are those of the known inside region's level (ZLevelStats::unchanged:
   // every element there lies above that level or deep inside its contours).
   std::uint64_t unchanged_levels = 0;
-  // Levels where U differs from that region's only near a few elements: computed near them and
-  // spliced to its contours (ZLevelStats::spliced).
-  std::uint64_t spliced_levels = 0;
   std::uint64_t facets = 0, edges = 0, vertices = 0;
   double top_z = 0, bottom_z = 0;  // the part's z range, mm
   ConditionStats condition;        // the input conditioning (zeros when not asked)

@@ -1,8 +1,7 @@
 // Z-level contours (kernels/scan/zlevel.hpp): the top-level flow of zlevel_contours. Pruning
 // grid, regions and candidate curves, active (uncovered) curves, coincident trimming, splits
 // at tangent joints and crossings. Cover and piece classification: zlevel_cover.cpp; linking
-// and output: zlevel_loops.cpp; levels copied or spliced from the known inside region:
-// zlevel_splice.cpp.
+// and output: zlevel_loops.cpp; levels copied from the known inside region: zlevel_known.cpp.
 #include "kernels/scan/zlevel.hpp"
 
 #include <algorithm>
@@ -161,13 +160,6 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el) {
 
 ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
                              double tip_z, const ZLevelParams& params) {
-  return zlevel_detail::contours_open(el, candidates, tip_z, params, nullptr);
-}
-
-ZLevelResult zlevel_detail::contours_open(const OffsetElements& el,
-                                          std::span<const std::uint32_t> candidates,
-                                          double tip_z, const ZLevelParams& params,
-                                          std::vector<ZContour>* open_out) {
   ZLevelResult result;
   result.tip_z = tip_z;
   ZLevelStats& st = result.stats;
@@ -505,7 +497,7 @@ ZLevelResult zlevel_detail::contours_open(const OffsetElements& el,
   std::vector<KeptPiece> kept;
   classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, params, st, kept);
   st.kept = kept.size();
-  build_loops(el, lv, regions, act, kept, params.link, result, open_out);
+  build_loops(el, lv, regions, act, kept, params.link, result);
   return result;
 }
 

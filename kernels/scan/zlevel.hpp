@@ -134,9 +134,6 @@ struct ZLevelStats {
   std::uint64_t inside_regions = 0;    // regions dropped deep inside ZLevelParams::inside
   std::uint64_t inside_cells = 0;      // interior cells found inside ZLevelParams::inside
   std::uint64_t unchanged = 0;  // 1: U is the known inside region's (its contours copied)
-  // 1: U differs from the known inside region's only within x-slabs: computed there and
-  // spliced to its contours (the other counts are the local computation's).
-  std::uint64_t spliced = 0;
 };
 
 struct ZLevelResult {
@@ -178,15 +175,7 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
 // same region there, inside it) or inside it, U is the region's U: below an overhang or the
 // top of a wall. The kernel then copies the region's contours (`contours`) with the
 // junctions moved to its level (ZLevelStats::unchanged); their elements all lie above both
-// levels, so their segments are shadows at both and their contact vectors horizontal. When
-// the other regions lie within x-slabs covering less than 0.4 of the contours' width (with
-// ZLevelParams::unfiltered), U differs from the region's U only there: the kernel computes
-// the contours of the candidates meeting the slabs (without the region) and splices them to
-// the region's along vertical cut lines clear of segment ends and arc extremes, where both
-// run along the same element's curve (ZLevelStats::spliced). The result is the same as the
-// full computation's up to rounding where curves are split (at a line's tangent joint with a
-// circle, ~sqrt(rounding)); when the pieces do not meet one to one at the cuts, the level is
-// computed in full.
+// levels, so their segments are shadows at both and their contact vectors horizontal.
 struct ZLevelInside {
   double x0 = 0, y0 = 0, cell = 1;
   int nx = 0, ny = 0;
@@ -236,10 +225,6 @@ struct ZLevelParams {
   // The facet and edge candidates were kept by zlevel_filter_deep against `inside` (the same
   // test the kernel would make again): only vertices are tested.
   bool candidates_filtered = false;
-  // Optional, with `inside` and `boxes`: all the level's candidates, before they were
-  // filtered. Where U differs from the inside region's only near a few elements, the kernel
-  // computes the contours near them from these and splices them to the region's.
-  std::span<const std::uint32_t> unfiltered;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any

@@ -321,29 +321,22 @@ double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double
 
 // Links the pieces into closed loops (ends within `link`), merges runs of one element's
 // curve, classifies junctions and writes the canonical contours into out. Chains that do not
-// close are counted (out.stats.open_chains) and, if open_out is given, written there in
-// their order (junctions between their segments only; no area).
+// close are counted (out.stats.open_chains) and left out.
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                  const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
-                 ZLevelResult& out, std::vector<ZContour>* open_out = nullptr);
+                 ZLevelResult& out);
 
 // Signed area enclosed by a loop of segments, mm^2 (exact for the typed segments).
 double contour_area(const std::vector<ContourSeg>& segs);
 // In output order: by the first segment's start (x, then y), then its element.
 void sort_contours(std::vector<ZContour>& contours);
 
-// ---- copies and splices (zlevel_splice.cpp, ZLevelInside in zlevel.hpp) ----
-
-// zlevel_contours (zlevel.cpp); the chains that do not close also go to open_out when given.
-ZLevelResult contours_open(const OffsetElements& el, std::span<const std::uint32_t> candidates,
-                           double tip_z, const ZLevelParams& params,
-                           std::vector<ZContour>* open_out);
+// ---- copies (zlevel_known.cpp, ZLevelInside in zlevel.hpp) ----
 
 // The level's contours when the known inside region q decides them (ZLevelInside): copied
 // where no candidate region (facets, edges and their end vertices, vertices of `cand`) can
-// make U differ from q's U (ZLevelStats::unchanged), or q's outside narrow x-slabs around the
-// regions that can, spliced to a computation from params.unfiltered inside them
-// (ZLevelStats::spliced). False: the level is to be computed in full (result unchanged).
+// make U differ from q's U (ZLevelStats::unchanged). False: the level is to be computed in
+// full (result unchanged).
 bool contours_from_known(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
                          const ZLevelInside& q, const Level& lv, double tip_z,
                          const ZLevelParams& params, ZLevelResult& result);

@@ -104,20 +104,17 @@ const Region& region_of(const std::vector<Region>& regions, std::uint32_t elemen
   return *it;
 }
 
-// Emits one closed loop of kept pieces as a contour into out, or, with open_out, an open
-// chain in its order into *open_out (junctions between its segments only; no area).
+// Emits one closed loop of kept pieces as a contour into out.
 void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                const std::vector<Curve>& curves, const std::vector<KeptPiece>& kept,
-               const std::vector<std::uint32_t>& seq, ZLevelResult& out,
-               std::vector<ZContour>* open_out) {
-  const bool closed = open_out == nullptr;
+               const std::vector<std::uint32_t>& seq, ZLevelResult& out) {
   std::vector<RawSeg> raw;
   raw.reserve(seq.size());
   for (std::uint32_t k : seq) raw.push_back(raw_seg(curves[kept[k].curve], kept[k]));
   // Merge runs of one element's curve, cyclically.
   const std::size_t n = raw.size();
   std::size_t first = 0;
-  while (closed && first < n && mergeable(raw[(first + n - 1) % n], raw[first])) ++first;
+  while (first < n && mergeable(raw[(first + n - 1) % n], raw[first])) ++first;
   std::vector<RawSeg> segs;
   if (first == n) first = 0;  // one closed curve (a full circle)
   for (std::size_t i = 0; i < n; ++i) {
@@ -153,13 +150,13 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
                               (a.a.y() < b.a.y() || (a.a.y() == b.a.y() && a.element < b.element))))
       start = i;
   }
-  if (closed) std::rotate(segs.begin(), segs.begin() + std::ptrdiff_t(start), segs.end());
+  std::rotate(segs.begin(), segs.begin() + std::ptrdiff_t(start), segs.end());
   ZContour c;
   const std::size_t m = segs.size();
   for (std::size_t i = 0; i < m; ++i) {
     const RawSeg &prev = segs[(i + m - 1) % m], &cur = segs[i];
     c.segs.push_back(cur.seg);
-    if (prev.seg.element == cur.seg.element || (!closed && i == 0)) continue;
+    if (prev.seg.element == cur.seg.element) continue;
     ZJunction j;
     j.seg = std::uint32_t(i);
     j.position = Vec3(cur.seg.a.x(), cur.seg.a.y(), out.tip_z);
@@ -178,10 +175,6 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
     j.b2 = contact_vector(el, region_of(regions, j.e2), cur.seg.a, lv);
     c.junctions.push_back(j);
   }
-  if (!closed) {
-    open_out->push_back(std::move(c));
-    return;
-  }
   c.area = contour_area(c.segs);
   c.hole = c.area < 0;
   out.contours.push_back(std::move(c));
@@ -191,7 +184,7 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
 
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
                  const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
-                 ZLevelResult& out, std::vector<ZContour>* open_out) {
+                 ZLevelResult& out) {
   const auto n = std::uint32_t(kept.size());
   // Cluster the ends within `link`.
   std::vector<Vec2> pts(2 * std::size_t(n));
@@ -304,18 +297,10 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
       ++out.stats.repaired_links;
     }
   }
-  // Trace (open chains wanted whole: from the pieces nothing enters first).
+  // Trace.
   std::vector<std::uint8_t> visited(n, 0);
-  std::vector<std::uint32_t> seq, trace_order;
-  if (open_out) {
-    std::vector<std::uint8_t> entered(n, 0);
-    for (std::uint32_t k = 0; k < n; ++k)
-      if (!dead[k] && next[k] != kNone) entered[next[k]] = 1;
-    for (std::uint32_t k = 0; k < n; ++k)
-      if (!entered[k]) trace_order.push_back(k);
-  }
-  for (std::uint32_t k = 0; k < n; ++k) trace_order.push_back(k);
-  for (const std::uint32_t k : trace_order) {
+  std::vector<std::uint32_t> seq;
+  for (std::uint32_t k = 0; k < n; ++k) {
     if (dead[k] || visited[k]) continue;
     seq.clear();
     std::uint32_t cur = k;
@@ -333,10 +318,9 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
     }
     if (!closed) {
       ++out.stats.open_chains;
-      if (open_out) emit_loop(el, lv, regions, curves, kept, seq, out, open_out);
       continue;
     }
-    emit_loop(el, lv, regions, curves, kept, seq, out, nullptr);
+    emit_loop(el, lv, regions, curves, kept, seq, out);
   }
   sort_contours(out.contours);
 }

@@ -100,9 +100,11 @@ TEST(PencilInvariance, FandiskCad) {
 }
 
 TEST(PencilInvariance, AnchorDenseCad) {
-  // 6 to 8 paths against 7: one-step z-level pieces that a lifted chord splits off or not
-  // (the split threshold meets rounding); turned, the traced length is 1.8 % longer.
-  expect_invariant("anchor_dense", {.turn_length = 0.02, .path_slack = 1});
+  // 6 to 8 paths (8 at full precision): beside one 371.7 mm path, pieces of 1.0 to 4.0 mm
+  // that a lifted chord splits off or not (the `leave` threshold meets rounding) and pieces of
+  // 1.0 to 1.2 mm kept or dropped by min_length (1 mm); turned, the traced length is 1.8 %
+  // longer.
+  expect_invariant("anchor_dense", {.turn_length = 0.02, .path_slack = 2});
 }
 
 TEST(PencilInvariance, Bunny00Scan) {
