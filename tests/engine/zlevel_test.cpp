@@ -12,6 +12,7 @@
 #include "engine/drop_index.hpp"
 #include "engine/parallel.hpp"
 #include "kernels/geom/tolerance.hpp"
+#include "kernels/mesh/subdivide.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "tests/engine/mesh_test_support.hpp"
 #include "tests/kernels/scan/scan_test_support.hpp"
@@ -242,6 +243,37 @@ TEST(ZLevel, BunnyContoursTouchTheLevel) {
     std::mt19937_64 rng(4);
     EXPECT_EQ(check_on_contours(c, drop, rng, 3000, !condition), 3000);
   }
+}
+
+// anchor_dense midpoint-subdivided three times and stored in float32 in its own units (extent
+// 1), as datasets/make-large-mesh.sh writes anchor_large (486,272 facets), then fit to 200 mm:
+// the rounding (up to 6e-6 mm) lies above the conditioning's plane tolerance, so the walls'
+// stacked edges stay ~1e-5 rad apart, and a few contour ends meet only within
+// tol::kZLevelRepair (ZLevelStats::repaired_links). Without that repair 31 chains stay open
+// (measured at 1 mm steps): this is the test that needs it.
+TEST(ZLevel, SubdividedFloat32CadPartClosesEveryContour) {
+  const std::filesystem::path path =
+      std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes/anchor_dense.off";
+  io::MeshReadResult r = io::read_mesh(path);
+  TriangleMesh mesh = std::move(r.mesh);
+  for (int k = 0; k < 3; ++k) mesh = subdivide_midpoint(mesh);
+  for (Vec3& v : mesh.vertices)
+    for (int i = 0; i < 3; ++i) v[i] = double(float(v[i]));
+  MeshTransform t;
+  t.fit_xy_mm = 200;
+  ASSERT_TRUE(apply_transform(t, mesh).ok());
+  const Cutter ball = ball_cutter(5);
+  ZLevelOpParams p;
+  p.step_down = 1;
+  const Collected c = contour(mesh, ball, p);
+  EXPECT_EQ(c.stats.levels, 171u);
+  EXPECT_EQ(c.stats.open_chains, 0u);
+  EXPECT_GT(c.stats.repaired_links, 0u);
+  const FacetTable table = build_facet_table(mesh);
+  const DropIndex index(table, ball);
+  auto drop = [&](double x, double y) { return index.query(x, y).tip_z; };
+  std::mt19937_64 rng(5);
+  EXPECT_EQ(check_on_contours(c, drop, rng, 2000, false), 2000);
 }
 
 }  // namespace
