@@ -4,6 +4,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <utility>
 
 #include "kernels/geom/tolerance.hpp"
@@ -220,13 +221,13 @@ bool move_onto(const Vec3& v, const std::vector<const Plane*>& planes, Vec3& out
   if (planes.size() == 1) {
     d = (planes[0]->c - planes[0]->n.dot(v)) * planes[0]->n;
   } else {
-    Eigen::MatrixX3d n(planes.size(), 3);
+    Eigen::MatrixXd n(planes.size(), 3);  // thin U and V need dynamic columns
     Eigen::VectorXd r(planes.size());
     for (std::size_t i = 0; i < planes.size(); ++i) {
       n.row(Eigen::Index(i)) = planes[i]->n.transpose();
       r[Eigen::Index(i)] = planes[i]->c - planes[i]->n.dot(v);
     }
-    Eigen::JacobiSVD<Eigen::MatrixX3d> svd(n, Eigen::ComputeThinU | Eigen::ComputeThinV);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(n, Eigen::ComputeThinU | Eigen::ComputeThinV);
     svd.setThreshold(tol::kConditionParallel);
     d = svd.solve(r);
   }
@@ -290,36 +291,43 @@ void unify_planes(const TriangleMesh& m, const std::vector<std::vector<std::uint
   }
 }
 
-// (vertex, cluster) pairs, sorted: vertices that are on no facet of a vertical cluster but
-// reach its plane through edges lying in it (within kConditionPlane), e.g. a ruling of the
-// curved surface next to a wall facet. Their edges' shadows run along the plane's shadow, so
-// they must lie on it as exactly as the cluster's own vertices.
+// (vertex, cluster) pairs, sorted: the ends of the edges that lie in a vertical cluster's
+// plane (both ends within kConditionPlane of it), the cluster's own and others: a ruling of
+// the curved surface beside a wall, the edge of a ledge straight above the wall's foot, a
+// wall's edge cut off from its face by a fillet. Their shadows run along the plane's shadow,
+// so they must lie on it as exactly as the cluster's own vertices. The planes are found by
+// the offset of the edge's xy line (buckets of 2 kConditionPlane, either sign).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> vertical_extensions(
-    const TriangleMesh& m, const Around& around, const Clusters& cl,
-    const std::vector<std::vector<std::uint32_t>>& members) {
+    const TriangleMesh& m, const Clusters& cl, const std::vector<std::vector<std::uint32_t>>& members) {
+  const double t = tol::kConditionPlane, w = 2 * t;
+  auto key = [w](double c) { return std::int64_t(std::floor(std::abs(c) / w)); };
+  std::unordered_multimap<std::int64_t, std::uint32_t> by_offset;
+  for (std::uint32_t c = 0; c < cl.plane.size(); ++c)
+    if (!members[c].empty() && cl.plane[c].n.z() == 0) by_offset.emplace(key(cl.plane[c].c), c);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;
-  std::vector<std::uint32_t> mark(m.vertices.size(), kNone), queue;
-  for (std::uint32_t c = 0; c < cl.plane.size(); ++c) {
-    const Plane& p = cl.plane[c];
-    if (members[c].empty() || p.n.z() != 0) continue;
-    queue.clear();
-    for (std::uint32_t f : members[c])
-      for (std::uint32_t v : m.facets[f])
-        if (mark[v] != c) {
-          mark[v] = c;
-          queue.push_back(v);
-        }
-    const std::size_t own = queue.size();
-    for (std::size_t i = 0; i < queue.size(); ++i)
-      for (std::uint32_t k = around.start[queue[i]]; k < around.start[queue[i] + 1]; ++k)
-        for (std::uint32_t w : m.facets[around.ids[k]])
-          if (mark[w] != c && std::abs(p.n.dot(m.vertices[w]) - p.c) <= tol::kConditionPlane) {
-            mark[w] = c;
-            queue.push_back(w);
+  if (by_offset.empty()) return out;
+  auto on = [&](const Plane& p, std::uint32_t v) {
+    return std::abs(p.n.dot(m.vertices[v]) - p.c) <= t;
+  };
+  for (const auto& f : m.facets)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t u = f[k], v = f[(k + 1) % 3];
+      const Vec3 &a = m.vertices[u], &b = m.vertices[v];
+      const Vec2 d(b.x() - a.x(), b.y() - a.y());
+      const double len = d.norm();
+      if (!(len > w)) continue;  // (nearly) vertical: no shadow line
+      const double c = (d.x() * a.y() - d.y() * a.x()) / len;  // offset of the xy line
+      for (std::int64_t q = key(c) - 1; q <= key(c) + 1; ++q) {
+        const auto [lo, hi] = by_offset.equal_range(q);
+        for (auto it = lo; it != hi; ++it)
+          if (on(cl.plane[it->second], u) && on(cl.plane[it->second], v)) {
+            out.emplace_back(u, it->second);
+            out.emplace_back(v, it->second);
           }
-    for (std::size_t i = own; i < queue.size(); ++i) out.emplace_back(queue[i], c);
-  }
+      }
+    }
   std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -332,7 +340,7 @@ ConditionedMesh condition_mesh(const TriangleMesh& mesh, const RangeRunner& rang
   Clusters cl = find_clusters(mesh, around, ranges, out.stats);
   const auto facets = cluster_facets(mesh, cl);
   unify_planes(mesh, facets, cl);
-  const auto extended = vertical_extensions(mesh, around, cl, facets);
+  const auto extended = vertical_extensions(mesh, cl, facets);
   const std::size_t nv = mesh.vertices.size();
   std::vector<std::uint8_t> kept(nv, 0);
   run_ranges(ranges, nv, [&](std::size_t begin, std::size_t end) {

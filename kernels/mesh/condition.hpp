@@ -25,8 +25,9 @@
 //   4. Moves. Each vertex moves by the smallest displacement (least squares: a point on one
 //      plane, a line on two, the corner on three) that puts it on the planes of its
 //      clusters (two facets or more, or snapped: a lone facet's own plane passes through its
-//      vertices) and of the vertical clusters it reaches through edges lying in their plane
-//      (a ruling of the curved surface beside a wall, whose shadow runs along the wall's),
+//      vertices) and of the vertical clusters in whose plane one of its edges lies (a ruling
+//      of the curved surface beside a wall, the edge of a ledge straight above a wall: their
+//      shadows run along the wall's),
 //      only when that moves it at most tol::kConditionMove; an axis plane's coordinate is
 //      then set exactly (a horizontal face becomes z == c in every bit).
 //

@@ -245,6 +245,26 @@ TEST(ZLevel, BunnyContoursTouchTheLevel) {
   }
 }
 
+// anchor_dense with every coordinate moved by up to 1e-11 mm (the draw of the first
+// ncpath_pencil_invariance: uniform from the top 53 bits of mt19937_64, seed 17): the edge of
+// a ledge lies in the plane of a wall below it without being joined to it; unless the
+// conditioning puts it on that plane exactly, its shadow runs 1e-10 mm beside the wall's and
+// 63 levels kept a duplicate piece that closed no contour. Same contours as the part as given.
+TEST(ZLevel, NoisyCadPartClosesEveryContour) {
+  const TriangleMesh mesh = test_meshes::load("anchor_dense");
+  TriangleMesh noisy = mesh;
+  std::mt19937_64 bits(17);
+  for (Vec3& v : noisy.vertices)
+    for (int i = 0; i < 3; ++i) v[i] += 1e-11 * (2 * double(bits() >> 11) * 0x1.0p-53 - 1);
+  ZLevelOpParams p;
+  p.step_down = 1;
+  const Collected given = contour(mesh, ball_cutter(5), p), moved = contour(noisy, ball_cutter(5), p);
+  EXPECT_EQ(given.stats.open_chains, 0u);
+  EXPECT_EQ(moved.stats.open_chains, 0u);
+  EXPECT_EQ(moved.stats.contours, given.stats.contours);
+  EXPECT_EQ(moved.stats.segments, given.stats.segments);
+}
+
 // anchor_dense midpoint-subdivided three times and stored in float32 in its own units (extent
 // 1), as datasets/make-large-mesh.sh writes anchor_large (486,272 facets), then fit to 200 mm:
 // the rounding (up to 6e-6 mm) lies above the conditioning's plane tolerance, so the walls'

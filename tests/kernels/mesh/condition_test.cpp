@@ -170,6 +170,22 @@ TEST(Condition, EdgeInAWallPlaneJoinsTheWall) {
   EXPECT_EQ(c.stats.max_move, 2e-9);
 }
 
+// An edge lying in a wall's plane but on no facet joined to the wall (the edge of a sloped
+// ledge straight above the wall, anchor_dense with vertex noise of 1e-11 mm): its ends move
+// onto the plane, so its shadow coincides with the wall's exactly; the ledge's other vertex
+// stays.
+TEST(Condition, DetachedEdgeInAWallPlaneJoinsTheWall) {
+  TriangleMesh m{{Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(10, 0, 5), Vec3(0, 0, 5),  // the wall
+                  Vec3(2, 3e-9, 8), Vec3(8, -2e-9, 8), Vec3(5, 4, 9)},           // the ledge
+                 {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}}};
+  const ConditionedMesh c = run(m);
+  EXPECT_EQ(c.mesh.vertices[4].y(), 0.0);
+  EXPECT_EQ(c.mesh.vertices[5].y(), 0.0);
+  EXPECT_EQ(c.mesh.vertices[4].x(), 2.0);
+  EXPECT_EQ(c.mesh.vertices[6], m.vertices[6]);
+  EXPECT_EQ(c.stats.max_move, 3e-9);
+}
+
 // Two pieces of one wall that share no vertex (interrupted by a fillet) get one plane, bit
 // for bit: their vertices lie on the plane through three of the first piece's.
 TEST(Condition, PiecesOfOneFaceGetOnePlane) {
