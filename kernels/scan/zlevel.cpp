@@ -126,6 +126,25 @@ void sort_by_depth(const Grid& grid, const std::vector<Region>& regions, const L
     }
 }
 
+// The per-level buffers, kept by each thread from one level to the next: a dense mesh's level
+// builds tens of MB of regions, curves and cell lists, and fresh memory for them each time
+// costs page faults (zlevel_contours does not call itself: one set per thread suffices).
+struct Workspace {
+  std::vector<std::uint64_t> bits, pbits, vbits;
+  std::vector<std::uint32_t> cand, stamp;
+  std::vector<Box4f> cand_box, rbox;
+  std::vector<Region> regions;
+  std::vector<Curve> curves, act, rest, tmp;
+  std::vector<Joint> joints;
+  CellLists region_cells, curve_cells;
+  std::vector<Split> splits;
+};
+
+Workspace& workspace() {
+  thread_local Workspace ws;
+  return ws;
+}
+
 bool boxes_overlap(const double* a, const double* b) {
   const double s = 1e-9;
   return a[0] <= b[2] + s && b[0] <= a[2] + s && a[1] <= b[3] + s && b[1] <= a[3] + s;
@@ -169,7 +188,9 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   if (!(lv.R > 0)) return result;
 
   // Candidate set as a bitmap: sorted, without repeats, independent of the given order.
-  std::vector<std::uint64_t> bits((n_el + 63) / 64, 0);
+  Workspace& ws = workspace();
+  std::vector<std::uint64_t>& bits = ws.bits;
+  bits.assign((n_el + 63) / 64, 0);
   for (std::uint32_t id : candidates)
     if (id < n_el) bits[id >> 6] |= std::uint64_t(1) << (id & 63);
   auto for_each_id = [&](auto&& fn) {
@@ -180,11 +201,14 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
 
   // Non-empty candidates with their boxes (floats rounded outwards), the grid's extent and
   // the mesh points at the ends of candidate edges (their discs mark interior cells).
-  std::vector<std::uint32_t> cand;
-  std::vector<Box4f> cand_box;
+  std::vector<std::uint32_t>& cand = ws.cand;
+  std::vector<Box4f>& cand_box = ws.cand_box;
+  cand.clear();
+  cand_box.clear();
   cand.reserve(candidates.size());
   cand_box.reserve(candidates.size());
-  std::vector<std::uint64_t> pbits((el.points.size() + 63) / 64, 0);
+  std::vector<std::uint64_t>& pbits = ws.pbits;
+  pbits.assign((el.points.size() + 63) / 64, 0);
   auto mark_point = [&](std::uint32_t p) { pbits[p >> 6] |= std::uint64_t(1) << (p & 63); };
   double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
   const ZLevelElementBoxes* pre = params.boxes;
@@ -306,8 +330,10 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
 
   // Regions that reach an open cell, in element id order (facets, edges, vertices); vertices
   // come from those edges (and from vertex candidates).
-  std::vector<Region> regions;
-  std::vector<std::uint64_t> vbits((el.vertex_count() + 63) / 64, 0);
+  std::vector<Region>& regions = ws.regions;
+  regions.clear();
+  std::vector<std::uint64_t>& vbits = ws.vbits;
+  vbits.assign((el.vertex_count() + 63) / 64, 0);
   auto mark_vertex_point = [&](std::uint32_t point) {
     const auto it = std::lower_bound(el.vertex_source.begin(), el.vertex_source.end(), point);
     if (it == el.vertex_source.end() || *it != point) return;
@@ -348,10 +374,12 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   st.regions = regions.size();
 
   // Candidate curves that reach an open cell.
-  std::vector<Curve> curves;
-  std::vector<Joint> joints;
+  std::vector<Curve>& curves = ws.curves;
+  std::vector<Joint>& joints = ws.joints;
+  curves.clear();
+  joints.clear();
   {
-    std::vector<Curve> tmp;
+    std::vector<Curve>& tmp = ws.tmp;
     for (std::size_t gi = 0; gi < regions.size(); ++gi) {
       tmp.clear();
       region_curves(el, regions[gi], std::uint32_t(gi), lv, tmp, joints);
@@ -363,16 +391,18 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   }
   st.curves = curves.size();
 
-  CellLists region_cells, curve_cells;
+  CellLists &region_cells = ws.region_cells, &curve_cells = ws.curve_cells;
   fill_lists(
       grid, regions.size(), [&](std::size_t k) { return regions[k].box; }, region_cells);
   sort_by_depth(grid, regions, lv, region_cells);
-  std::vector<Box4f> rbox(regions.size());
+  std::vector<Box4f>& rbox = ws.rbox;
+  rbox.resize(regions.size());
   for (std::size_t k = 0; k < regions.size(); ++k) rbox[k] = outward_box(regions[k].box);
 
   // The parts of the curves not certified inside U (piecewise by single regions or interior
   // cells): the active curves, in region order; act_begin[g] is region g's first.
-  std::vector<Curve> act;
+  std::vector<Curve>& act = ws.act;
+  act.clear();
   std::vector<std::uint32_t> act_begin(regions.size() + 1, 0);
   {
     std::vector<std::pair<double, double>> runs;
@@ -391,7 +421,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
 
   // Active curve pairs i < j whose boxes overlap, once each, other than a region's own
   // curves and the structural pairs.
-  std::vector<std::uint32_t> stamp;
+  std::vector<std::uint32_t>& stamp = ws.stamp;
   auto for_each_pair = [&](auto&& fn) {
     stamp.assign(act.size(), kNone);
     for (std::uint32_t i = 0; i < act.size(); ++i) {
@@ -433,7 +463,8 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       std::sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) {
         return a.curve != b.curve ? a.curve < b.curve : a.s0 < b.s0;
       });
-      std::vector<Curve> rest;
+      std::vector<Curve>& rest = ws.rest;
+      rest.clear();
       std::vector<std::uint32_t> rest_begin(regions.size() + 1, 0);
       std::size_t q = 0;
       for (std::size_t gi = 0; gi < regions.size(); ++gi) {
@@ -457,7 +488,8 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   st.active_curves = act.size();
 
   // Splits: every curve's ends, the tangent joints, the crossings.
-  std::vector<Split> splits;
+  std::vector<Split>& splits = ws.splits;
+  splits.clear();
   splits.reserve(curves.size() * 4);
   for (std::uint32_t i = 0; i < act.size(); ++i) {
     splits.push_back({i, 0.0, act[i].a});
