@@ -128,7 +128,8 @@ void sort_by_depth(const Grid& grid, const std::vector<Region>& regions, const L
 
 // The per-level buffers, kept by each thread from one level to the next: a dense mesh's level
 // builds tens of MB of regions, curves and cell lists, and fresh memory for them each time
-// costs page faults (zlevel_contours does not call itself: one set per thread suffices).
+// costs page faults (zlevel_contours does not call itself: one set per thread suffices). The
+// capacity stays with the thread: about 55 MB a thread after a 1.2 M-facet mesh.
 struct Workspace {
   std::vector<std::uint64_t> bits, pbits, vbits;
   std::vector<std::uint32_t> cand, stamp;
