@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/geom/tolerance.hpp"
 #include "kernels/scan/envelope.hpp"
 
 namespace ncpath {
@@ -45,7 +46,7 @@ bool crease_between(const ScanElements& se, const PencilCandidate& a, const Penc
 bool crease_on_plane(const ScanElements& se, const PencilCandidate& a, double v, double min_angle,
                      double floor_z, PencilCandidate& out) {
   const Vec3 n = layer_normal(a.family), t = crease_tangent(a.b1, a.b2);
-  if (!(std::abs(t.dot(n)) > 1e-6)) return false;  // the tangent runs along the planes
+  if (!(std::abs(t.dot(n)) > tol::kPencilAlongPlane)) return false;  // along the planes
   const Vec3 q = a.p + t * ((v - a.p.dot(n)) / t.dot(n));
   const double w = std::max((q - a.p).norm(), 0.05);
   return nearest_crease(se, a, v, q, w, t, min_angle, floor_z, out);

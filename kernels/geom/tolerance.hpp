@@ -339,6 +339,12 @@ inline constexpr double kZLevelFlatSlope = 1e-12;
 // (~1e-15) must not split a crease at 45 degrees between the x and y lines.
 inline constexpr double kPencilFamilyTie = 1e-9;
 
+// Dimensionless (|t . n| of a unit crease tangent t and a layer's unit normal n). A crease
+// crossing the layer planes at a smaller sine runs along them: its point on the next plane
+// would lie a million spacings away, so the tracing predicts none there (crease_on_plane in
+// engine/pencil_crease.cpp).
+inline constexpr double kPencilAlongPlane = 1e-6;
+
 // Dimensionless (mean lateral component of a crease's material vector along a path). A path
 // whose cut-side score is within this times its xy length of 0 has no material side: a
 // symmetric V-groove (b1 + b2 vertical to rounding, ~1e-16) or a vertical corner (no xy
