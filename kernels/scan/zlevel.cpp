@@ -146,6 +146,88 @@ Workspace& workspace() {
   return ws;
 }
 
+// Interior cells: the discs of the mesh points at the ends of candidate edges (each inside U:
+// the sphere belongs to a facet's neighbourhood), which cover U's inside up to about the
+// vertex spacing, the regions of the facets and edges large enough to hold cells beyond their
+// vertices' discs, and the cells inside the known inside region (a higher level's contours).
+void mark_interior_cells(const OffsetElements& el, const Workspace& ws, const Level& lv,
+                         bool reach, const ZLevelInside* inside, Grid& grid, ZLevelStats& st) {
+  const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
+  const auto& pbits = ws.pbits;
+  const auto& cand = ws.cand;
+  const auto& cand_box = ws.cand_box;
+  Region g;
+  g.kind = RegionKind::kVertex;
+  for (std::size_t w = 0; w < pbits.size(); ++w)
+    for (std::uint64_t m = pbits[w]; m; m &= m - 1) {
+      const Vec3& p = el.points[w * 64 + std::countr_zero(m)];
+      const double h = std::max(0.0, lv.zc - p.z());
+      if (!(h < lv.R)) continue;
+      g.r = std::sqrt((lv.R - h) * (lv.R + h));
+      if (g.r < 0.7 * grid.cell) continue;
+      g.c = Vec2(p.x(), p.y());
+      g.box[0] = g.c.x() - g.r;
+      g.box[1] = g.c.y() - g.r;
+      g.box[2] = g.c.x() + g.r;
+      g.box[3] = g.c.y() + g.r;
+      mark_interior(g, lv, grid);
+    }
+  for (std::size_t k = 0; k < cand.size(); ++k) {
+    const std::uint32_t id = cand[k];
+    if (id >= nf + ne) continue;
+    const auto& b = cand_box[k];
+    const double big = id < nf ? grid.cell : 2 * lv.R + 2 * grid.cell;
+    if (b[2] - b[0] < big && b[3] - b[1] < big) continue;
+    if (id < nf && (b[2] - b[0] < grid.cell || b[3] - b[1] < grid.cell)) continue;
+    if (build_region(el, id, lv, reach, g)) mark_interior(g, lv, grid);
+  }
+  if (inside)
+    for (int j = 0; j < grid.ny; ++j)
+      for (int i = 0; i < grid.nx; ++i) {
+        const std::size_t c = std::size_t(j) * grid.nx + i;
+        if (grid.interior[c]) continue;
+        const double x0 = grid.gx(i), y0 = grid.gy(j), x1 = x0 + grid.cell, y1 = y0 + grid.cell;
+        const Vec2 sq[4] = {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
+        if (inside_contains(*inside, sq, 4, 0, inside->margin)) {
+          grid.interior[c] = 1;
+          ++st.inside_cells;
+        }
+      }
+}
+
+// A part [s0, s1] of active curve `curve` to remove.
+struct Cut {
+  std::uint32_t curve;
+  double s0, s1;
+};
+
+// Removes the cuts (any order) from the active curves `act`, each region's curves staying
+// together (act_begin[g]: region g's first); `rest` is scratch.
+void remove_cuts(std::vector<Cut>& cuts, std::vector<Curve>& act, std::vector<Curve>& rest,
+                 std::vector<std::uint32_t>& act_begin) {
+  std::sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) {
+    return a.curve != b.curve ? a.curve < b.curve : a.s0 < b.s0;
+  });
+  const std::size_t regions = act_begin.size() - 1;
+  rest.clear();
+  std::vector<std::uint32_t> rest_begin(regions + 1, 0);
+  std::size_t q = 0;
+  for (std::size_t gi = 0; gi < regions; ++gi) {
+    rest_begin[gi] = std::uint32_t(rest.size());
+    for (std::uint32_t c = act_begin[gi]; c < act_begin[gi + 1]; ++c) {
+      double from = 0;
+      for (; q < cuts.size() && cuts[q].curve == c; ++q) {
+        if (cuts[q].s0 > from) rest.push_back(sub_curve(act[c], from, cuts[q].s0));
+        from = std::max(from, cuts[q].s1);
+      }
+      if (from < act[c].len) rest.push_back(sub_curve(act[c], from, act[c].len));
+    }
+  }
+  rest_begin[regions] = std::uint32_t(rest.size());
+  act.swap(rest);
+  act_begin.swap(rest_begin);
+}
+
 bool boxes_overlap(const double* a, const double* b) {
   const double s = 1e-9;
   return a[0] <= b[2] + s && b[0] <= a[2] + s && a[1] <= b[3] + s && b[1] <= a[3] + s;
@@ -254,49 +336,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   grid.interior.assign(std::size_t(grid.nx) * grid.ny, 0);
   st.cells = grid.interior.size();
 
-  // Interior cells: the discs of the mesh points (each inside U: the sphere belongs to a facet's
-  // neighbourhood), which cover U's inside up to about the vertex spacing, and the regions of
-  // the facets and edges large enough to hold cells beyond their vertices' discs.
-  {
-    Region g;
-    g.kind = RegionKind::kVertex;
-    for (std::size_t w = 0; w < pbits.size(); ++w)
-      for (std::uint64_t m = pbits[w]; m; m &= m - 1) {
-        const Vec3& p = el.points[w * 64 + std::countr_zero(m)];
-        const double h = std::max(0.0, lv.zc - p.z());
-        if (!(h < lv.R)) continue;
-        g.r = std::sqrt((lv.R - h) * (lv.R + h));
-        if (g.r < 0.7 * grid.cell) continue;
-        g.c = Vec2(p.x(), p.y());
-        g.box[0] = g.c.x() - g.r;
-        g.box[1] = g.c.y() - g.r;
-        g.box[2] = g.c.x() + g.r;
-        g.box[3] = g.c.y() + g.r;
-        mark_interior(g, lv, grid);
-      }
-    for (std::size_t k = 0; k < cand.size(); ++k) {
-      const std::uint32_t id = cand[k];
-      if (id >= nf + ne) continue;
-      const auto& b = cand_box[k];
-      const double big = id < nf ? grid.cell : 2 * lv.R + 2 * grid.cell;
-      if (b[2] - b[0] < big && b[3] - b[1] < big) continue;
-      if (id < nf && (b[2] - b[0] < grid.cell || b[3] - b[1] < grid.cell)) continue;
-      if (build_region(el, id, lv, params.skip_unreachable, g)) mark_interior(g, lv, grid);
-    }
-  }
-  // Cells inside the known inside region (a higher level's contours) are interior too.
-  if (inside)
-    for (int j = 0; j < grid.ny; ++j)
-      for (int i = 0; i < grid.nx; ++i) {
-        const std::size_t c = std::size_t(j) * grid.nx + i;
-        if (grid.interior[c]) continue;
-        const double x0 = grid.gx(i), y0 = grid.gy(j), x1 = x0 + grid.cell, y1 = y0 + grid.cell;
-        const Vec2 sq[4] = {Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)};
-        if (inside_contains(*inside, sq, 4, 0, inside->margin)) {
-          grid.interior[c] = 1;
-          ++st.inside_cells;
-        }
-      }
+  mark_interior_cells(el, ws, lv, params.skip_unreachable, inside, grid, st);
   // A region deep inside it (tol::kZLevelInsideDepth) is dropped; its shape is tested through
   // a hull that holds it: the projected offset triangle, the capsule of radius R around the
   // edge's shadow, the disc.
@@ -451,37 +491,13 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   // drop both). Trimmed here instead, so that k coincident curves do not make k^2 pieces;
   // the lowest stays and still splits the curves that cross there.
   {
-    struct Cut {
-      std::uint32_t curve;
-      double s0, s1;
-    };
     std::vector<Cut> cuts;
     for_each_pair([&](std::uint32_t i, std::uint32_t j) {
       double d0, d1;  // act is in element order: act[i]'s is the lower id
       if (coincident_overlap(act[i], act[j], d0, d1)) cuts.push_back({j, d0, d1});
     });
     if (!cuts.empty()) {
-      std::sort(cuts.begin(), cuts.end(), [](const Cut& a, const Cut& b) {
-        return a.curve != b.curve ? a.curve < b.curve : a.s0 < b.s0;
-      });
-      std::vector<Curve>& rest = ws.rest;
-      rest.clear();
-      std::vector<std::uint32_t> rest_begin(regions.size() + 1, 0);
-      std::size_t q = 0;
-      for (std::size_t gi = 0; gi < regions.size(); ++gi) {
-        rest_begin[gi] = std::uint32_t(rest.size());
-        for (std::uint32_t c = act_begin[gi]; c < act_begin[gi + 1]; ++c) {
-          double from = 0;
-          for (; q < cuts.size() && cuts[q].curve == c; ++q) {
-            if (cuts[q].s0 > from) rest.push_back(sub_curve(act[c], from, cuts[q].s0));
-            from = std::max(from, cuts[q].s1);
-          }
-          if (from < act[c].len) rest.push_back(sub_curve(act[c], from, act[c].len));
-        }
-      }
-      rest_begin[regions.size()] = std::uint32_t(rest.size());
-      act.swap(rest);
-      act_begin.swap(rest_begin);
+      remove_cuts(cuts, act, ws.rest, act_begin);
       fill_lists(
           grid, act.size(), [&](std::size_t k) { return act[k].box; }, curve_cells);
     }
