@@ -9,6 +9,9 @@
 //   zlevel_intersect.cpp  curve evaluation and curve-curve crossings
 //   zlevel_cover.cpp      uncovered runs, tangent joints, piece classification
 //   zlevel_loops.cpp      linking kept pieces into loops, junctions, canonical output
+//   zlevel_inside.cpp     the known inside region of a higher level (ZLevelInside): polygon
+//                         index, containment and depth tests, the deep-element filter
+//   zlevel_known.cpp      a level whose U is the known region's takes its contours
 #include <algorithm>
 #include <array>
 #include <cmath>
