@@ -17,9 +17,9 @@ TOOLCHAIN=(build-essential cmake ninja-build pkg-config git ca-certificates)
 
 # Libraries the top-level CMakeLists.txt find_package()s: Eigen (kernels' value types),
 # oneTBB (engine/parallel.hpp), Embree 3 (engine spatial queries), HDF5 C (CL output),
-# CLI11 (command line), toml++ (job specs).
+# CLI11 (command line), toml++ (job specs), zlib (the CL writer deflates HDF5 chunks itself).
 LIBRARIES=(libeigen3-dev libtbb-dev libembree-dev libhdf5-dev libcli11-dev
-  libtomlplusplus-dev)
+  libtomlplusplus-dev zlib1g-dev)
 
 # Tests and benchmarks: GoogleTest/GoogleMock, Google Benchmark.
 TEST_BENCH=(libgtest-dev libgmock-dev libbenchmark-dev)

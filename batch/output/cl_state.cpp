@@ -46,6 +46,14 @@ void FileState::close_job() {
     }
     if (*a) (*a)->close();
   }
+  for (JobState::Streamed& a : j->arrays) {
+    try {
+      if (!j->broken) a.rows.finish();
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+    a.rows.close();
+  }
   j.reset();
   // Flushing after every job puts finished jobs on disk: best effort if the process dies later.
   try {

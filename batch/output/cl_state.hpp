@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "batch/output/chunk_appender.hpp"
 #include "batch/output/cl_writer.hpp"
@@ -53,6 +54,12 @@ struct JobState {
   std::optional<h5::ChunkAppender> contact;  // [N] uint8
   std::optional<h5::ChunkAppender> offsets;  // [P + 1] int64
   std::optional<h5::ChunkAppender> kinds;    // [P] uint8
+  struct Streamed {                          // the arrays of ClJob::begin_array, by id
+    h5::ChunkAppender rows;
+    ClJob::ArrayType type;
+    std::size_t width;  // values per row
+  };
+  std::vector<Streamed> arrays;
   bool broken = false;  // an HDF5 write failed half-way: the datasets are inconsistent
 };
 

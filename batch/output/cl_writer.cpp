@@ -109,14 +109,14 @@ ClJob ClFile::begin_job(const std::string& name, const JobInfo& info) {
   h5::write_attribute(contact.get(), "enum", kContactKindEnum, s.ctx);
   job->stats = h5::create_group(g, "stats", s.ctx);
 
-  job->points.emplace(std::move(points), prefix + "points", H5T_NATIVE_DOUBLE, sizeof(double), 3,
-                      kPointChunkRows, &s.ctx);
-  job->contact.emplace(std::move(contact), prefix + "contact_kind", H5T_NATIVE_UINT8, 1, 0,
-                       kContactChunkRows, &s.ctx);
-  job->offsets.emplace(std::move(offsets), prefix + "path_offsets", H5T_NATIVE_INT64,
-                       sizeof(std::int64_t), 0, kOffsetChunkRows, &s.ctx);
-  job->kinds.emplace(std::move(kinds), prefix + "path_kind", H5T_NATIVE_UINT8, 1, 0,
-                     kPathKindChunkRows, &s.ctx);
+  job->points.emplace(std::move(points), prefix + "points", sizeof(double), 3, kPointChunkRows,
+                      kDeflateLevel, &s.ctx);
+  job->contact.emplace(std::move(contact), prefix + "contact_kind", 1, 0, kContactChunkRows,
+                       kDeflateLevel, &s.ctx);
+  job->offsets.emplace(std::move(offsets), prefix + "path_offsets", sizeof(std::int64_t), 0,
+                       kOffsetChunkRows, kDeflateLevel, &s.ctx);
+  job->kinds.emplace(std::move(kinds), prefix + "path_kind", 1, 0, kPathKindChunkRows,
+                     kDeflateLevel, &s.ctx);
   const std::int64_t zero = 0;  // path_offsets starts with 0
   job->offsets->append(&zero, 1);
 

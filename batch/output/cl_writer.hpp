@@ -144,6 +144,21 @@ class ClJob {
                    std::span<const std::uint8_t> data, std::size_t cols,
                    std::string_view unit = "", std::string_view description = "");
 
+  // The same kind of array, streamed: created now with no rows (and its attributes), rows
+  // appended in order by append_rows(id, ...), the last ones written when the job closes. At
+  // most a few chunks per array are held in memory (h5::ChunkAppender), so tables of any
+  // length stream through. The file holds the same data as one write_array of all the rows.
+  enum class ArrayType : std::uint8_t { kFloat64, kInt64, kUInt8 };
+  using ArrayId = std::size_t;
+  ArrayId begin_array(const std::string& group, const std::string& name, ArrayType type,
+                      std::size_t cols, std::string_view unit = "",
+                      std::string_view description = "");
+  // data.size() must be a multiple of the array's width and the type its own
+  // (std::invalid_argument, nothing written).
+  void append_rows(ArrayId id, std::span<const double> data);
+  void append_rows(ArrayId id, std::span<const std::int64_t> data);
+  void append_rows(ArrayId id, std::span<const std::uint8_t> data);
+
   // Writes the buffered tails, closes the job's HDF5 objects and flushes the file (finished
   // jobs are then on disk; HDF5 does not promise that a file survives a later crash of the
   // process, but a flushed one usually reads). Idempotent.

@@ -72,7 +72,7 @@ void write_scalar(hid_t parent, const std::string& name, double value, const Con
 
 // An empty, appendable dataset: shape [0] (cols == 0) or [0, cols], unlimited rows, chunks
 // of chunk_rows rows, shuffle + deflate(level), fill value 0, no time tracking, no chunk
-// cache (chunks are written whole, exactly once; see ChunkAppender).
+// cache (ChunkAppender writes whole compressed chunks directly, exactly once).
 Handle create_appendable(hid_t parent, const char* name, hid_t file_type, hsize_t cols,
                          hsize_t chunk_rows, unsigned deflate_level, const Context& ctx);
 
