@@ -1,9 +1,13 @@
 #pragma once
-// The junction table that the scan and zlevel jobs write (groups scan/ and zlevel/,
-// docs/hdf5-schema.md): the engine's junction records of a whole job as structure-of-arrays
-// in cutting order, and the shared texts of the element and kind columns.
+// The exact record tables that the scan and zlevel jobs stream next to their CL paths
+// (groups scan/ and zlevel/, docs/hdf5-schema.md): columns appended chunk by chunk in cutting
+// order (never held whole), the junction table both jobs share, and the shared texts of the
+// element and kind columns.
+#include <array>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "batch/output/cl_writer.hpp"
@@ -16,20 +20,53 @@ inline constexpr const char* kElementText =
     "mesh element: kind (0 facet, 1 edge, 2 vertex), then indices a, b: facet index, -1; "
     "edge's two vertex indices; vertex index, -1";
 
-// Rows of 3 values flattened.
-void push_row(std::vector<double>& to, const std::array<double, 3>& v);
-void push_row(std::vector<std::int64_t>& to, const ElementRef& e);
+// One streamed array of the job (ClJob::begin_array) and the rows of the chunk at hand.
+template <class T>
+class Column {
+ public:
+  Column(out::ClJob& cl, const std::string& group, const std::string& name, std::size_t cols,
+         std::string_view unit, std::string_view description)
+      : id_(cl.begin_array(group, name, type(), cols, unit, description)) {}
 
-struct JunctionTable {
-  std::vector<std::int64_t> path, element1, element2;
-  std::vector<std::uint8_t> kind;
-  std::vector<double> position, b1, b2, angle;
+  void push(T v) { rows_.push_back(v); }
+  template <std::size_t N>
+  void push(const std::array<T, N>& row) {
+    rows_.insert(rows_.end(), row.begin(), row.end());
+  }
+  void push(const ElementRef& e) requires std::is_same_v<T, std::int64_t> {
+    rows_.insert(rows_.end(), {e.kind, e.a, e.b});
+  }
+  // Appends the rows pushed since the last flush to the array.
+  void flush(out::ClJob& cl) {
+    cl.append_rows(id_, std::span<const T>(rows_));
+    rows_.clear();
+  }
 
-  void add(const ScanJunctionRecord& j);
-  // junction_path, _kind, _position, _b1, _b2, _element1, _element2, _angle in `group`;
-  // path_text and position_text describe the path and position columns for that group.
-  void write(out::ClJob& cl, const std::string& group, const std::string& path_text,
-             const std::string& position_text) const;
+ private:
+  static constexpr out::ClJob::ArrayType type() {
+    if constexpr (std::is_same_v<T, double>) return out::ClJob::ArrayType::kFloat64;
+    if constexpr (std::is_same_v<T, std::int64_t>) return out::ClJob::ArrayType::kInt64;
+    return out::ClJob::ArrayType::kUInt8;
+  }
+  out::ClJob::ArrayId id_;
+  std::vector<T> rows_;
+};
+
+// junction_path, _kind, _position, _b1, _b2, _element1, _element2, _angle in `group`, created
+// by the constructor; path_text and position_text describe the path and position columns.
+class JunctionTable {
+ public:
+  JunctionTable(out::ClJob& cl, const std::string& group, const std::string& path_text,
+                const std::string& position_text);
+  void append(std::span<const ScanJunctionRecord> records);
+
+ private:
+  out::ClJob& cl_;
+  Column<std::int64_t> path_;
+  Column<std::uint8_t> kind_;
+  Column<double> position_, b1_, b2_;
+  Column<std::int64_t> element1_, element2_;
+  Column<double> angle_;
 };
 
 }  // namespace ncpath::jobs

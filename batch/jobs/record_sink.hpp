@@ -1,7 +1,7 @@
 #pragma once
 // The chunk sink of the jobs that write exact records next to their CL paths (scan, zlevel):
-// each chunk's CL paths go to the job's cl/ group and G-code as they stream in; its records
-// go to the job's record tables, written once the run is over.
+// each chunk's CL paths go to the job's cl/ group and G-code, and its records to the job's
+// record tables (batch/jobs/junction_table.hpp), as they stream in.
 #include <cassert>
 #include <cstdint>
 

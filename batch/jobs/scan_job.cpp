@@ -30,52 +30,53 @@ constexpr const char* kSegmentKindEnum =
     "0=facet_line,1=sphere_arc,2=cylinder_ellipse,3=cylinder_line,4=cylinder_circle,5=floor,"
     "6=vertical";
 
-// The exact segments and junctions of the whole job, structure-of-arrays in cutting order
-// (rows of 3 or 5 values flattened), as they go to HDF5.
-struct ScanRecords {
-  std::vector<std::int64_t> seg_path, seg_element;
-  std::vector<std::uint8_t> seg_kind;
-  std::vector<double> seg_start, seg_end, seg_geometry;
-  JunctionTable junctions;
+// The exact segments and junctions of the job, streamed to the scan/ group chunk by chunk in
+// cutting order (rows of 3 or 5 values).
+class ScanRecords {
+ public:
+  explicit ScanRecords(out::ClJob& cl)
+      : cl_(cl),
+        path_(cl, kGroup, "segment_path", 0, "",
+              "cut path of segment i: its index among the job's cut paths (path_kind 0)"),
+        kind_(cl, kGroup, "segment_kind", 0, "", kSegmentKindEnum),
+        element_(cl, kGroup, "segment_element", 3, "", kElementText),
+        start_(cl, kGroup, "segment_start", 3, "mm",
+               "tool tip x, y, z where the segment starts, in cutting order"),
+        end_(cl, kGroup, "segment_end", 3, "mm",
+             "tool tip x, y, z where the segment ends, in cutting order"),
+        geometry_(cl, kGroup, "segment_geometry", 5, "",
+                  "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
+                  "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
+                  "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle "
+                  "of the major axis from +u (upper arc); vertical: u; unused columns 0"),
+        junctions_(cl, kGroup,
+                   "cut path of junction i: its index among the job's cut paths (path_kind 0)",
+                   "tool tip x, y, z at the junction") {}
 
   void append(const ScanChunk& ch) {
     for (const ScanSegmentRecord& s : ch.segments) {
-      seg_path.push_back(s.path);
-      seg_kind.push_back(s.kind);
-      push_row(seg_element, s.element);
-      push_row(seg_start, s.start);
-      push_row(seg_end, s.end);
-      seg_geometry.insert(seg_geometry.end(), s.geometry.begin(), s.geometry.end());
+      path_.push(s.path);
+      kind_.push(s.kind);
+      element_.push(s.element);
+      start_.push(s.start);
+      end_.push(s.end);
+      geometry_.push(s.geometry);
     }
-    for (const ScanJunctionRecord& j : ch.junctions) {
-      junctions.add(j);
-    }
+    for (auto* c : {&path_, &element_}) c->flush(cl_);
+    kind_.flush(cl_);
+    for (auto* c : {&start_, &end_, &geometry_}) c->flush(cl_);
+    junctions_.append(ch.junctions);
   }
+
+ private:
+  static constexpr const char* kGroup = "scan";
+  out::ClJob& cl_;
+  Column<std::int64_t> path_;
+  Column<std::uint8_t> kind_;
+  Column<std::int64_t> element_;
+  Column<double> start_, end_, geometry_;
+  JunctionTable junctions_;
 };
-
-template <class T>
-std::span<const T> all(const std::vector<T>& v) {
-  return std::span<const T>(v);
-}
-
-void write_records(const ScanRecords& r, out::ClJob& cl) {
-  const std::string g = "scan";
-  cl.write_array(g, "segment_path", all(r.seg_path), 0, "",
-                 "cut path of segment i: its index among the job's cut paths (path_kind 0)");
-  cl.write_array(g, "segment_kind", all(r.seg_kind), 0, "", kSegmentKindEnum);
-  cl.write_array(g, "segment_element", all(r.seg_element), 3, "", kElementText);
-  cl.write_array(g, "segment_start", all(r.seg_start), 3, "mm",
-                 "tool tip x, y, z where the segment starts, in cutting order");
-  cl.write_array(g, "segment_end", all(r.seg_end), 3, "mm",
-                 "tool tip x, y, z where the segment ends, in cutting order");
-  cl.write_array(g, "segment_geometry", all(r.seg_geometry), 5, "",
-                 "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
-                 "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
-                 "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle of "
-                 "the major axis from +u (upper arc); vertical: u; unused columns 0");
-  r.junctions.write(cl, g, "cut path of junction i: its index among the job's cut paths (path_kind 0)",
-                    "tool tip x, y, z at the junction");
-}
 
 void push_scan_stats(const ScanStats& st, std::vector<out::StatValue>& stats) {
   const out::StatValue list[] = {
@@ -114,15 +115,12 @@ ScanJobSummary run_scan_job(const JobSpec& job, const TriangleMesh& mesh, out::C
                             out::GcodeWriter* gcode, RunControl& control,
                             std::vector<out::StatValue>& stats) {
   ScanJobSummary summary;
-  ScanRecords records;
+  ScanRecords records(cl);
   RecordSink<ScanRecords> sink{cl, gcode, records, summary.points};
   const ScanStats st = run_scan(
       mesh, job.tool, job.scan, [&](const ScanChunk& ch) { sink(ch); }, control);
   summary.compute_s = st.compute_s;
-
-  Stopwatch write_clock;
-  write_records(records, cl);
-  const double write_s = st.sink_s + write_clock.seconds();
+  const double write_s = st.sink_s;
 
   push_scan_stats(st, stats);
   stats.push_back({"compute_s", st.compute_s, "s"});

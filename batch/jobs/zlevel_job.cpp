@@ -27,65 +27,67 @@ static_assert(static_cast<int>(JunctionKind::kConvex) == 0 &&
 
 constexpr const char* kSegmentKindEnum = "0=line,1=circular_arc,2=elliptic_arc";
 
-// The exact contours of the whole job, structure-of-arrays in cutting order (rows of 3 or 7
-// values flattened), as they go to HDF5.
-struct ZLevelRecords {
-  std::vector<std::int64_t> seg_path, seg_element;
-  std::vector<std::uint8_t> seg_kind, seg_shadow;
-  std::vector<double> seg_start, seg_end, seg_geometry;
-  JunctionTable junctions;
-  std::vector<double> contour_level;
-  std::vector<std::uint8_t> contour_hole;
+// The exact contours of the job, streamed to the zlevel/ group chunk by chunk in cutting
+// order (rows of 3 or 7 values).
+class ZLevelRecords {
+ public:
+  explicit ZLevelRecords(out::ClJob& cl)
+      : cl_(cl),
+        path_(cl, kGroup, "segment_path", 0, "",
+              "cut path (contour) of segment i: its index among the job's cut paths "
+              "(path_kind 0)"),
+        kind_(cl, kGroup, "segment_kind", 0, "", kSegmentKindEnum),
+        shadow_(cl, kGroup, "segment_shadow", 0, "",
+                "1: the element lies above the level there (the ball passes under it: a wall "
+                "or an overhang; the contact is on the vertical below it), else 0"),
+        element_(cl, kGroup, "segment_element", 3, "", kElementText),
+        start_(cl, kGroup, "segment_start", 3, "mm",
+               "tool tip x, y, z where the segment starts, in cutting order (z: the level)"),
+        end_(cl, kGroup, "segment_end", 3, "mm",
+             "tool tip x, y, z where the segment ends, in cutting order"),
+        geometry_(cl, kGroup, "segment_geometry", 7, "",
+                  "arcs (kinds 1, 2): centre x, centre y (mm), r1, r2 (mm), angle of the axis "
+                  "from +x, t0, t1 (rad): p(t) = centre + r1 cos t axis + r2 sin t perp(axis), "
+                  "t from t0 to t1 (t1 > t0, counter-clockwise); lines: zeros"),
+        junctions_(cl, kGroup,
+                   "cut path (contour) of junction i: its index among the job's cut paths",
+                   "tool tip x, y, z at the junction (the start of a segment)"),
+        level_(cl, kGroup, "contour_level", 0, "mm", "tool-tip z of contour k (the k-th cut path)"),
+        hole_(cl, kGroup, "contour_hole", 0, "",
+              "1: contour k is a hole (clockwise, the region outside it), 0: an outer boundary "
+              "(counter-clockwise)") {}
 
   void append(const ZLevelChunk& ch) {
     for (const ZLevelSegmentRecord& s : ch.segments) {
-      seg_path.push_back(s.path);
-      seg_kind.push_back(s.kind);
-      seg_shadow.push_back(s.shadow);
-      push_row(seg_element, s.element);
-      push_row(seg_start, s.start);
-      push_row(seg_end, s.end);
-      seg_geometry.insert(seg_geometry.end(), s.geometry.begin(), s.geometry.end());
+      path_.push(s.path);
+      kind_.push(s.kind);
+      shadow_.push(s.shadow);
+      element_.push(s.element);
+      start_.push(s.start);
+      end_.push(s.end);
+      geometry_.push(s.geometry);
     }
-    for (const ZLevelJunctionRecord& j : ch.junctions) {
-      junctions.add(j);
-    }
-    contour_level.insert(contour_level.end(), ch.contour_level.begin(), ch.contour_level.end());
-    contour_hole.insert(contour_hole.end(), ch.contour_hole.begin(), ch.contour_hole.end());
+    for (auto* c : {&path_, &element_}) c->flush(cl_);
+    for (auto* c : {&kind_, &shadow_}) c->flush(cl_);
+    for (auto* c : {&start_, &end_, &geometry_}) c->flush(cl_);
+    junctions_.append(ch.junctions);
+    for (const double z : ch.contour_level) level_.push(z);
+    for (const std::uint8_t h : ch.contour_hole) hole_.push(h);
+    level_.flush(cl_);
+    hole_.flush(cl_);
   }
+
+ private:
+  static constexpr const char* kGroup = "zlevel";
+  out::ClJob& cl_;
+  Column<std::int64_t> path_;
+  Column<std::uint8_t> kind_, shadow_;
+  Column<std::int64_t> element_;
+  Column<double> start_, end_, geometry_;
+  JunctionTable junctions_;
+  Column<double> level_;
+  Column<std::uint8_t> hole_;
 };
-
-template <class T>
-std::span<const T> all(const std::vector<T>& v) {
-  return std::span<const T>(v);
-}
-
-void write_records(const ZLevelRecords& r, out::ClJob& cl) {
-  const std::string g = "zlevel";
-  cl.write_array(g, "segment_path", all(r.seg_path), 0, "",
-                 "cut path (contour) of segment i: its index among the job's cut paths "
-                 "(path_kind 0)");
-  cl.write_array(g, "segment_kind", all(r.seg_kind), 0, "", kSegmentKindEnum);
-  cl.write_array(g, "segment_shadow", all(r.seg_shadow), 0, "",
-                 "1: the element lies above the level there (the ball passes under it: a wall or "
-                 "an overhang; the contact is on the vertical below it), else 0");
-  cl.write_array(g, "segment_element", all(r.seg_element), 3, "", kElementText);
-  cl.write_array(g, "segment_start", all(r.seg_start), 3, "mm",
-                 "tool tip x, y, z where the segment starts, in cutting order (z: the level)");
-  cl.write_array(g, "segment_end", all(r.seg_end), 3, "mm",
-                 "tool tip x, y, z where the segment ends, in cutting order");
-  cl.write_array(g, "segment_geometry", all(r.seg_geometry), 7, "",
-                 "arcs (kinds 1, 2): centre x, centre y (mm), r1, r2 (mm), angle of the axis from "
-                 "+x, t0, t1 (rad): p(t) = centre + r1 cos t axis + r2 sin t perp(axis), t from "
-                 "t0 to t1 (t1 > t0, counter-clockwise); lines: zeros");
-  r.junctions.write(cl, g, "cut path (contour) of junction i: its index among the job's cut paths",
-                    "tool tip x, y, z at the junction (the start of a segment)");
-  cl.write_array(g, "contour_level", all(r.contour_level), 0, "mm",
-                 "tool-tip z of contour k (the k-th cut path)");
-  cl.write_array(g, "contour_hole", all(r.contour_hole), 0, "",
-                 "1: contour k is a hole (clockwise, the region outside it), 0: an outer boundary "
-                 "(counter-clockwise)");
-}
 
 void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& stats) {
   const out::StatValue list[] = {
@@ -121,7 +123,7 @@ ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, ou
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats) {
   ZLevelJobSummary summary;
-  ZLevelRecords records;
+  ZLevelRecords records(cl);
   RecordSink<ZLevelRecords> sink{cl, gcode, records, summary.points};
   auto on_chunk = [&](const ZLevelChunk& ch) {
     // One contour per cut path.
@@ -130,10 +132,7 @@ ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, ou
   };
   const ZLevelOpStats st = run_zlevel(mesh, job.tool, job.zlevel, on_chunk, control);
   summary.compute_s = st.compute_s;
-
-  Stopwatch write_clock;
-  write_records(records, cl);
-  const double write_s = st.sink_s + write_clock.seconds();
+  const double write_s = st.sink_s;
 
   push_zlevel_stats(st, stats);
   stats.push_back({"compute_s", st.compute_s, "s"});
