@@ -52,6 +52,7 @@ PathOut guard_path(const MeshVerifier& mesh, const SweptTool& tool, const ClChun
 ChordGuard::ChordGuard(const TriangleMesh& mesh, const Cutter& cutter, double stock) : mesh_(mesh) {
   tool_.cutter = cutter;
   tool_.stock = stock;
+  seconds_ = built_.seconds();
 }
 
 ClChunk ChordGuard::apply(const ClChunk& in) {

@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "engine/cl_chunk.hpp"
+#include "engine/run_control.hpp"
 #include "engine/verify_mesh.hpp"
 
 namespace ncpath {
@@ -40,9 +41,10 @@ class ChordGuard {
   ChordGuard(const TriangleMesh& mesh, const Cutter& cutter, double stock = 0);
   ClChunk apply(const ClChunk& in);
   const ChordGuardStats& stats() const { return stats_; }
-  double seconds() const { return seconds_; }  // in apply, so far
+  double seconds() const { return seconds_; }  // building the index, and in apply so far
 
  private:
+  Stopwatch built_;  // first: it times the index built by mesh_'s initialiser
   MeshVerifier mesh_;
   SweptTool tool_;
   ChordGuardStats stats_;

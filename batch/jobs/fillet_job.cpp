@@ -64,9 +64,9 @@ FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh, ou
   summary.compute_s = compute_clock.seconds();
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 
-  Stopwatch write_clock;
   ChordGuard guard(mesh, job.tool, job.fillet.stock);
   const ClChunk c = guard.apply(fillet_chunk(r));
+  Stopwatch write_clock;
   cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
   if (gcode) gcode->append(c);
   summary.points = c.point_count();

@@ -90,9 +90,9 @@ PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh, ou
   summary.compute_s = compute_clock.seconds();
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 
-  Stopwatch write_clock;
   ChordGuard guard(mesh, job.tool, job.pencil.stock);
   const ClChunk c = guard.apply(pencil_chunk(r));
+  Stopwatch write_clock;
   cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
   if (gcode) gcode->append(c);
   summary.points = c.point_count();
