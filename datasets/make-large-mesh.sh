@@ -10,6 +10,7 @@
 # With --scans, also the dense scan-like meshes (Loop's subdivision: every vertex moves, no
 # two facets coplanar, nothing hidden under an overhang), issue 17's inputs:
 #   bunny00_loop.stl:    bunny00.off (75,408 facets) twice to 1,206,528 facets (~58 MiB)
+#   bunny00_loop3.stl:   bunny00.off three times to 4,826,112 facets (~230 MiB)
 #   armadillo_loop.stl:  armadillo.off (52,000 facets) four times to 13,312,000 facets
 #                        (~635 MiB; the first Loop mesh of armadillo with >= 4.8 M facets)
 #
@@ -95,5 +96,6 @@ make_one "$MESHES/refined_elephant.off" "$MESHES/elephant_large.stl" \
 make_one "$MESHES/anchor_dense.off" "$MESHES/anchor_large.stl" 454273
 if [ "$SCANS" = 1 ]; then
   make_one "$MESHES/bunny00.off" "$MESHES/bunny00_loop.stl" 1200000 loop
+  make_one "$MESHES/bunny00.off" "$MESHES/bunny00_loop3.stl" 4800000 loop
   make_one "$MESHES/armadillo.off" "$MESHES/armadillo_loop.stl" 4800000 loop
 fi
