@@ -57,6 +57,7 @@ double xy_distance(const Vec2& a, const Vec2& b, const Vec2 t[3]) {
   return std::sqrt(d2);
 }
 
+
 // Better of two (value, move) pairs for "smallest value, then lowest move".
 bool closer(double a, std::uint64_t move_a, double b, std::uint64_t move_b) {
   return a < b || (a == b && move_a < move_b);
@@ -87,6 +88,14 @@ struct MeshVerifier::Impl {
   };
   std::vector<std::uint32_t> cell_start;  // nx * ny + 1 offsets into entries (CSR)
   std::vector<Entry> entries;
+  // Tiles of kTile x kTile cells, each bounding every facet registered in its cells (xy box
+  // and top): a query dismisses a whole tile when no facet in it can matter.
+  static constexpr std::int32_t kTile = 4;
+  struct Tile {
+    double lo_x = kInf, lo_y = kInf, hi_x = -kInf, hi_y = -kInf, z_hi = -kInf;
+  };
+  std::int32_t tx = 0;  // tiles a row
+  std::vector<Tile> tiles;
 
   std::int32_t cell_x(double x) const { return clamp_cell((x - x0) / cell, nx); }
   std::int32_t cell_y(double y) const { return clamp_cell((y - y0) / cell, ny); }
@@ -97,8 +106,12 @@ struct MeshVerifier::Impl {
 
   void build(const TriangleMesh& mesh);
   void build_grid();
+  void build_tiles();
+  template <class Matters, class Visit>
+  void visit(const Vec3& lo, const Vec3& hi, Matters&& matters, Visit&& visit) const;
   template <class Visit>
-  void visit(const Vec3& lo, const Vec3& hi, Visit&& visit) const;
+  void visit_cell(std::int32_t i, std::int32_t j, std::int32_t i0, std::int32_t j0,
+                  const Vec3& lo, const Vec3& hi, Visit&& visit) const;
 };
 
 void MeshVerifier::Impl::build(const TriangleMesh& mesh) {
@@ -177,31 +190,71 @@ void MeshVerifier::Impl::build_grid() {
                   static_cast<std::uint16_t>(f.cj), z_hi};
     each_cell(f, [&](std::size_t c) { entries[fill[c]++] = e; });
   }
+  build_tiles();
 }
 
-// Calls visit(facet) once for every facet whose box meets [lo, hi], in grid order. A facet
-// is met in every shared cell but visited only in the first one (its low corner clamped to
-// the query's cells).
-template <class Visit>
-void MeshVerifier::Impl::visit(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+void MeshVerifier::Impl::build_tiles() {
+  tx = (nx + kTile - 1) / kTile;
+  const std::int32_t ty = (ny + kTile - 1) / kTile;
+  tiles.assign(static_cast<std::size_t>(tx) * ty, Tile{});
+  par::for_each(static_cast<std::size_t>(ty), 1, [&](std::size_t tj) {
+    for (std::int32_t j = static_cast<std::int32_t>(tj) * kTile;
+         j < std::min<std::int32_t>(ny, static_cast<std::int32_t>(tj + 1) * kTile); ++j)
+      for (std::int32_t i = 0; i < nx; ++i) {
+        Tile& t = tiles[tj * tx + i / kTile];
+        const std::size_t c = static_cast<std::size_t>(j) * nx + i;
+        for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+          const FacetRec& f = facets[entries[k].facet];
+          t.lo_x = std::min(t.lo_x, f.lo_x);
+          t.lo_y = std::min(t.lo_y, f.lo_y);
+          t.hi_x = std::max(t.hi_x, f.hi_x);
+          t.hi_y = std::max(t.hi_y, f.hi_y);
+          t.z_hi = std::max(t.z_hi, f.z_hi);
+        }
+      }
+  });
+}
+
+// Calls visit(facet) once for every facet whose box meets [lo, hi] and whose tile matters
+// (matters(tile) is false only when no facet registered in the tile can matter), tile by tile
+// and in grid order within a tile. A facet is met in every shared cell but visited only in
+// the first one (its low corner clamped to the query's cells): a facet whose first cell lies
+// in a dismissed tile is dismissed with it.
+template <class Matters, class Visit>
+void MeshVerifier::Impl::visit(const Vec3& lo, const Vec3& hi, Matters&& matters,
+                               Visit&& visit) const {
   if (facets.empty()) return;
   const std::int32_t i0 = cell_x(lo.x()), i1 = cell_x(hi.x());
   const std::int32_t j0 = cell_y(lo.y()), j1 = cell_y(hi.y());
-  for (std::int32_t j = j0; j <= j1; ++j)
-    for (std::int32_t i = i0; i <= i1; ++i) {
-      const std::size_t c = static_cast<std::size_t>(j) * nx + i;
-      for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-        const Entry& e = entries[k];
-        if (std::max<std::int32_t>(e.ci, i0) != i || std::max<std::int32_t>(e.cj, j0) != j ||
-            e.z_hi < lo.z())
-          continue;  // seen in an earlier cell, or below the box
-        const FacetRec& f = facets[e.facet];
-        if (f.hi_x < lo.x() || f.lo_x > hi.x() || f.hi_y < lo.y() || f.lo_y > hi.y() ||
-            f.z_hi < lo.z() || f.z_lo > hi.z())
-          continue;
-        visit(f);
-      }
+  for (std::int32_t tj = j0 / kTile; tj <= j1 / kTile; ++tj)
+    for (std::int32_t ti = i0 / kTile; ti <= i1 / kTile; ++ti) {
+      const Tile& t = tiles[static_cast<std::size_t>(tj) * tx + ti];
+      if (t.z_hi < lo.z() || t.hi_x < lo.x() || t.lo_x > hi.x() || t.hi_y < lo.y() ||
+          t.lo_y > hi.y() || !matters(t))
+        continue;
+      const std::int32_t ja = std::max(j0, tj * kTile), jb = std::min(j1, tj * kTile + kTile - 1);
+      const std::int32_t ia = std::max(i0, ti * kTile), ib = std::min(i1, ti * kTile + kTile - 1);
+      for (std::int32_t j = ja; j <= jb; ++j)
+        for (std::int32_t i = ia; i <= ib; ++i) visit_cell(i, j, i0, j0, lo, hi, visit);
     }
+}
+
+template <class Visit>
+void MeshVerifier::Impl::visit_cell(std::int32_t i, std::int32_t j, std::int32_t i0,
+                                    std::int32_t j0, const Vec3& lo, const Vec3& hi,
+                                    Visit&& visit) const {
+  const std::size_t c = static_cast<std::size_t>(j) * nx + i;
+  for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
+    const Entry& e = entries[k];
+    if (std::max<std::int32_t>(e.ci, i0) != i || std::max<std::int32_t>(e.cj, j0) != j ||
+        e.z_hi < lo.z())
+      continue;  // seen in an earlier cell, or below the box
+    const FacetRec& f = facets[e.facet];
+    if (f.hi_x < lo.x() || f.lo_x > hi.x() || f.hi_y < lo.y() || f.lo_y > hi.y() ||
+        f.z_hi < lo.z() || f.z_lo > hi.z())
+      continue;
+    visit(f);
+  }
 }
 
 MeshVerifier::MeshVerifier(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
@@ -235,6 +288,21 @@ struct MoveScan {
     const double dxy = xy_distance(a, b, t);
     if (dxy <= foot) gouge(f, dxy);
     if (cap > 0 && dxy <= foot + cap) clearance(f, dxy);
+  }
+
+  // False when no facet within the tile's bounds can raise the gouge: beyond the body's
+  // reach, or below its bottom (raised by the gouge so far) at a lower bound of the tile's
+  // xy distance (from its centre, less its half diagonal; the profile is non-decreasing).
+  // Rapids also need the clearance: every tile matters.
+  template <class Tile>
+  bool matters(const Tile& t) const {
+    if (cap > 0) return true;
+    const Vec2 half(0.5 * (t.hi_x - t.lo_x), 0.5 * (t.hi_y - t.lo_y));
+    const Vec2 centre(t.lo_x + half.x(), t.lo_y + half.y());
+    const double d = std::max(0.0, std::sqrt(dist2_point_segment(centre, a, b)) - half.norm());
+    if (d > foot) return false;
+    const double floor = std::max(floor0, out.gouge);
+    return t.z_hi > low_tip + floor - tool.stock + profile_height(profile, d);
   }
 
   void gouge(const FacetRec& f, double dxy) {
@@ -293,7 +361,9 @@ MeshVerifier::MoveCheck MeshVerifier::check_move(const SweptTool& tool_in, const
   const double reach = scan.foot + cap, top = 2 * tool.cutter.corner_radius + tool.shank + s;
   const Vec3 lo = p0.cwiseMin(p1) - Vec3(reach, reach, s + cap);
   const Vec3 hi = p0.cwiseMax(p1) + Vec3(reach, reach, top + cap);
-  impl_->visit(lo, hi, [&](const FacetRec& f) { scan.facet(f); });
+  impl_->visit(
+      lo, hi, [&](const Impl::Tile& t) { return scan.matters(t); },
+      [&](const FacetRec& f) { scan.facet(f); });
   return scan.out;
 }
 

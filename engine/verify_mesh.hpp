@@ -7,7 +7,9 @@
 // Candidates come from a uniform grid over the mesh's xy box, in double precision: a facet
 // sits in the cells its xy box overlaps, and a move visits the cells under the swept tool's
 // box (xy grown by R + stock, plus the clearance cap for rapids; z from the lowest tip minus
-// stock to the highest tip plus 2r + shank + stock) and sees each facet once. Candidates are
+// stock to the highest tip plus 2r + shank + stock) and sees each facet once. Tiles of 4 x 4
+// cells bound their facets (xy box, top): a tile beyond the body's reach or below its bottom
+// is dismissed whole (gouge checks; rapids visit every tile for the clearance). Candidates are
 // then dismissed by exact bounds before any GJK call: the facet's xy distance from the move's
 // xy segment (beyond R + stock nothing touches), its top below the swept bottom over that
 // distance (profile of the tool grown by stock at the lowest tip), and its plane's distance
