@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "batch/cli/cli_options.hpp"
+#include "batch/cli/huge_pages.hpp"
 #include "batch/cli/mesh_op_cli.hpp"
 #include "batch/cli/progress_bar.hpp"
 #include "batch/cli/verify_cli.hpp"
@@ -149,6 +150,7 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  reexec_with_huge_pages(argv);
   CLI::App app{
       "ncpath: exact cutter-location (CL) data for NC milling, in bulk.\n"
       "Units are mm; CL points are tool-tip positions, tool axis +Z."};
