@@ -162,11 +162,49 @@ void PlaneIndex::query(double v, std::vector<std::uint32_t>& out) const {
     if (long_lo[k] <= v && long_hi[k] >= v) out.push_back(long_ids[k]);
 }
 
-PlaneIndex build_plane_index(const OffsetElements& el) {
+namespace {
+
+// A cheap interval containing element id's y reach when it has one (element_y_reach is
+// within it): the offset facet's own range, an edge's or vertex's y range grown by R.
+void y_reach_bound(const OffsetElements& el, std::uint32_t id, double& lo, double& hi) {
+  const std::size_t nf = el.facet_count(), ne = el.edge_count();
+  double a, b;
+  if (id < nf) {
+    const auto& t = el.facet_tri[id];
+    a = std::min({t[0].y(), t[1].y(), t[2].y()});
+    b = std::max({t[0].y(), t[1].y(), t[2].y()});
+  } else if (id < nf + ne) {
+    const auto& ev = el.edge_vertices[id - nf];
+    a = std::min(el.points[ev[0]].y(), el.points[ev[1]].y()) - el.radius;
+    b = std::max(el.points[ev[0]].y(), el.points[ev[1]].y()) + el.radius;
+  } else {
+    const double y = el.points[el.vertex_source[id - nf - ne]].y();
+    a = y - el.radius;
+    b = y + el.radius;
+  }
+  const double pad = 2e-9 * el.radius;  // twice element_y_reach's padding: its rounding
+  lo = a - pad;
+  hi = b + pad;
+}
+
+bool meets_any(double lo, double hi, std::span<const double> at) {
+  for (const double v : at)
+    if (lo <= v && v <= hi) return true;
+  return false;
+}
+
+}  // namespace
+
+PlaneIndex build_plane_index(const OffsetElements& el, std::span<const double> only_at) {
   const std::size_t n = el.element_count();
+  const std::size_t sample = std::max<std::size_t>(1, n / 65536);
   std::vector<double> lo(n, INFINITY), hi(n, -INFINITY);
   par::for_each(n, 16384, [&](std::size_t id) {
     double l, h;
+    if (!only_at.empty() && id % sample != 0) {
+      y_reach_bound(el, std::uint32_t(id), l, h);
+      if (!meets_any(l, h, only_at)) return;
+    }
     if (element_y_reach(el, std::uint32_t(id), l, h)) {
       lo[id] = l;
       hi[id] = h;
@@ -175,7 +213,7 @@ PlaneIndex build_plane_index(const OffsetElements& el) {
   // Short: up to the 99.9th percentile of the extents (sampled over all elements); the
   // longest 0.1 % (big facets, untrimmed cylinders) are long and checked for every plane.
   std::vector<double> ext;
-  for (std::size_t id = 0; id < n; id += std::max<std::size_t>(1, n / 65536))
+  for (std::size_t id = 0; id < n; id += sample)
     if (lo[id] <= hi[id]) ext.push_back(hi[id] - lo[id]);
   double limit = 0;
   if (!ext.empty()) {
@@ -183,29 +221,39 @@ PlaneIndex build_plane_index(const OffsetElements& el) {
     std::nth_element(ext.begin(), ext.begin() + k, ext.end());
     limit = ext[std::size_t(k)];
   }
+  if (!only_at.empty()) {  // the sampled elements meeting no plane: out
+    for (std::size_t id = 0; id < n; id += sample)
+      if (!meets_any(lo[id], hi[id], only_at)) lo[id] = INFINITY;
+  }
   PlaneIndex ix;
   ix.short_extent = limit;
-  std::vector<std::uint32_t> order;
+  // Sorted by (lo, id) as contiguous pairs: the sort reads no other memory.
+  struct Key {
+    double lo;
+    std::uint32_t id;
+  };
+  std::vector<Key> order;
   for (std::uint32_t id = 0; id < n; ++id) {
     if (!(lo[id] <= hi[id])) continue;
     if (hi[id] - lo[id] <= ix.short_extent) {
-      order.push_back(id);
+      order.push_back({lo[id], id});
     } else {
       ix.long_ids.push_back(id);
       ix.long_lo.push_back(lo[id]);
       ix.long_hi.push_back(hi[id]);
     }
   }
-  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return lo[a] != lo[b] ? lo[a] < lo[b] : a < b;
+  par::sort(order.begin(), order.end(), [](const Key& a, const Key& b) {
+    return a.lo != b.lo ? a.lo < b.lo : a.id < b.id;
   });
-  ix.ids = order;
+  ix.ids.resize(order.size());
   ix.lo.resize(order.size());
   ix.hi.resize(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    ix.lo[k] = lo[order[k]];
-    ix.hi[k] = hi[order[k]];
-  }
+  par::for_each(order.size(), 65536, [&](std::size_t k) {
+    ix.ids[k] = order[k].id;
+    ix.lo[k] = order[k].lo;
+    ix.hi[k] = hi[order[k].id];
+  });
   return ix;
 }
 

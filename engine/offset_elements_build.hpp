@@ -2,6 +2,7 @@
 // Parallel build of a mesh's offset elements (kernels/mesh/offset_elements.hpp) and the
 // index that finds the elements reaching a drive plane y = v (engine/scan.hpp).
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "kernels/mesh/condition.hpp"
@@ -60,6 +61,10 @@ struct PlaneIndex {
   void query(double v, std::vector<std::uint32_t>& out) const;
 };
 
-PlaneIndex build_plane_index(const OffsetElements& el);
+// The index of el's reachable elements by their y reach. With only_at, the index answers
+// queries at those plane positions only (with the same elements, in the same order, as the
+// full index) and holds just the elements meeting them: a cheap bound (the offset facet's
+// range, an edge's or vertex's range grown by R) spares the exact reach of the others.
+PlaneIndex build_plane_index(const OffsetElements& el, std::span<const double> only_at = {});
 
 }  // namespace ncpath

@@ -159,16 +159,24 @@ std::array<double, 5> segment_geometry(const SlicePiece& pc, const CurveSegment&
   return g;
 }
 
+// The scanned rectangle: params.rect, or the part's xy box grown by the margin.
+std::array<double, 4> scan_rect(const Aabb3& box, const ScanParams& p) {
+  return p.rect.value_or(std::array<double, 4>{box.lo.x() - p.margin, box.lo.y() - p.margin,
+                                               box.hi.x() + p.margin, box.hi.y() + p.margin});
+}
+
 }  // namespace
 
-ScanElements build_scan_elements(const TriangleMesh& mesh, double radius) {
+ScanElements build_scan_elements(const TriangleMesh& mesh, double radius,
+                                 const std::array<std::vector<double>, 2>& only_at) {
   Stopwatch clock;
   ScanElements se;
   se.el[0] = build_offset_elements_parallel(mesh, radius, false);
   if (se.el[0].facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
   se.el[1] = mirror_xy(se.el[0]);
-  par::overlap([&] { se.index[0] = build_plane_index(se.el[0]); },
-               [&] { se.index[1] = build_plane_index(se.el[1]); });
+  par::overlap([&] { se.index[0] = build_plane_index(se.el[0], only_at[0]); },
+               [&] { se.index[1] = build_plane_index(se.el[1], only_at[1]); });
+  se.only_at = only_at;
   se.box = bounding_box(mesh);
   se.mesh_facets = mesh.facets.size();
   se.build_s = clock.seconds();
@@ -200,7 +208,12 @@ ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanPar
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: curve-based scanning needs a ball-end mill");
   if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
-  const ScanElements se = build_scan_elements(mesh, cutter.radius);
+  // A family that is not scanned is sliced only along the other's two side planes.
+  const std::array<double, 4> rect = scan_rect(bounding_box(mesh), p);
+  std::array<std::vector<double>, 2> only_at;
+  if (p.families == ScanFamilies::kX) only_at[1] = {rect[0], rect[2]};
+  if (p.families == ScanFamilies::kY) only_at[0] = {rect[1], rect[3]};
+  const ScanElements se = build_scan_elements(mesh, cutter.radius, only_at);
   return run_scan(se, cutter, p, sink, control);
 }
 
@@ -218,11 +231,9 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
   st.vertices = se.el[0].vertex_count();
   st.facets_degenerate = se.mesh_facets - st.facets;
 
-  const Aabb3& box = se.box;
-  std::array<double, 4> rect = p.rect.value_or(std::array<double, 4>{
-      box.lo.x() - p.margin, box.lo.y() - p.margin, box.hi.x() + p.margin, box.hi.y() + p.margin});
+  const std::array<double, 4> rect = scan_rect(se.box, p);
   st.rect = rect;
-  st.floor_z = p.floor_z.value_or(box.lo.z());
+  st.floor_z = p.floor_z.value_or(se.box.lo.z());
 
   struct FamilyRun {
     int f;  // 0: x lines (planes y = v), 1: y lines (planes x = v)
@@ -237,6 +248,11 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
       continue;
     FamilyRun r{f, f == 0 ? rect[0] : rect[1], f == 0 ? rect[2] : rect[3],
                 f == 0 ? rect[1] : rect[0], 0, paths};
+    const std::vector<double>& side_at = se.only_at[std::size_t(1 - f)];
+    if (!se.only_at[std::size_t(f)].empty() ||
+        (!side_at.empty() && (std::find(side_at.begin(), side_at.end(), r.u0) == side_at.end() ||
+                              std::find(side_at.begin(), side_at.end(), r.u1) == side_at.end())))
+      throw std::logic_error("run_scan: the elements' plane indexes were built for other planes");
     const double extent = f == 0 ? rect[3] - rect[1] : rect[2] - rect[0];
     r.planes = std::size_t(std::floor(extent / p.interval + tol::kCountSlack)) + 1;
     paths += std::int64_t(r.planes);

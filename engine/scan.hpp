@@ -112,12 +112,16 @@ struct ScanStats {
 struct ScanElements {
   std::array<OffsetElements, 2> el;
   std::array<PlaneIndex, 2> index;
+  std::array<std::vector<double>, 2> only_at;  // per family: the planes its index answers (all: empty)
   Aabb3 box;                    // the mesh's
   std::size_t mesh_facets = 0;  // facets in the mesh (including degenerate ones)
   double build_s = 0;
 };
-// Throws std::invalid_argument when the mesh has no usable facet.
-ScanElements build_scan_elements(const TriangleMesh& mesh, double radius);
+// Throws std::invalid_argument when the mesh has no usable facet. only_at[f] non-empty: family
+// f's index answers queries at those planes only (build_plane_index), e.g. the side planes
+// of a scan of the other family alone.
+ScanElements build_scan_elements(const TriangleMesh& mesh, double radius,
+                                 const std::array<std::vector<double>, 2>& only_at = {});
 
 // The cutter must be a ball. Throws Cancelled, std::invalid_argument for bad params.
 ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanParams& params,

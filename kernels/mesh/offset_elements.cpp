@@ -115,30 +115,35 @@ bool element_reachable(const OffsetElements& el, std::uint32_t id) {
 namespace {
 
 // Extreme y components of the unit directions d with d . w <= 0 for all w in ws (see
-// element_y_reach). False when there is none.
+// element_y_reach; at most 32 constraints). False when there is none.
 bool cone_y_extent(std::span<const Vec3> ws, double slack, double& dy_min, double& dy_max) {
   const double kIn = std::max(1e-9, 2 * slack);  // on a face counts as inside up to this
+  std::array<Vec3, 32> wn;                        // the constraints as unit vectors (or zero)
+  const std::size_t n = std::min<std::size_t>(ws.size(), wn.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double len = ws[i].norm();
+    wn[i] = len > 0 ? Vec3(ws[i] / len) : Vec3::Zero();
+  }
   dy_min = INFINITY;
   dy_max = -INFINITY;
   auto consider = [&](const Vec3& d) {
-    const double n = d.norm();
-    if (!(n > 1e-12)) return;
-    const Vec3 u = d / n;
-    for (const Vec3& w : ws)
-      if (u.dot(w) > kIn * w.norm()) return;
+    const double len = d.norm();
+    if (!(len > 1e-12)) return;
+    const Vec3 u = d / len;
+    for (std::size_t i = 0; i < n; ++i)
+      if (u.dot(wn[i]) > kIn) return;
     dy_min = std::min(dy_min, u.y());
     dy_max = std::max(dy_max, u.y());
   };
   const Vec3 ey(0, 1, 0);
   consider(ey);
   consider(-ey);
-  for (const Vec3& w : ws) {
-    const Vec3 wn = w.normalized();
-    consider(ey - wn * wn.y());
-    consider(-ey + wn * wn.y());
+  for (std::size_t i = 0; i < n; ++i) {
+    consider(ey - wn[i] * wn[i].y());
+    consider(-ey + wn[i] * wn[i].y());
   }
-  for (std::size_t i = 0; i < ws.size(); ++i)
-    for (std::size_t j = i + 1; j < ws.size(); ++j) {
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
       const Vec3 c = ws[i].cross(ws[j]);
       consider(c);
       consider(-c);

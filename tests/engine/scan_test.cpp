@@ -174,6 +174,65 @@ TEST(Scan, OneAndTwoThreadsGiveIdenticalOutput) {
     EXPECT_EQ(a.junctions[i].position, b.junctions[i].position);
 }
 
+// An index restricted to a few planes answers queries there exactly like the full index
+// (same elements, same order) and holds only a small part of the elements.
+TEST(Scan, RestrictedPlaneIndexAnswersLikeTheFullOneAtItsPlanes) {
+  const TriangleMesh mesh = load("bunny00");
+  const ScanElements se = build_scan_elements(mesh, 5);
+  const Aabb3 box = bounding_box(mesh);
+  for (int f : {0, 1}) {
+    const double lo = f == 0 ? box.lo.y() : box.lo.x(), hi = f == 0 ? box.hi.y() : box.hi.x();
+    const std::vector<double> at = {lo - 5, lo + 0.37 * (hi - lo), hi + 4.9999};
+    const PlaneIndex small = build_plane_index(se.el[std::size_t(f)], at);
+    EXPECT_LT(small.ids.size() + small.long_ids.size(),
+              (se.index[std::size_t(f)].ids.size() + se.index[std::size_t(f)].long_ids.size()) / 4);
+    for (const double v : at) {
+      std::vector<std::uint32_t> want, got;
+      se.index[std::size_t(f)].query(v, want);
+      small.query(v, got);
+      EXPECT_FALSE(want.empty() && v > lo && v < hi);
+      EXPECT_EQ(got, want) << "family " << f << " at " << v;
+    }
+  }
+}
+
+// A scan of one family slices the other only along its two side planes (restricted index):
+// the same output as with both families' full indexes, with the sides through the part.
+TEST(Scan, OneFamilyScanEqualsTheScanWithFullIndexes) {
+  const TriangleMesh mesh = load("fandisk");
+  const Aabb3 box = bounding_box(mesh);
+  for (const ScanFamilies fam : {ScanFamilies::kX, ScanFamilies::kY}) {
+    ScanParams p;
+    p.families = fam;
+    p.interval = 0.05 * (box.hi.x() - box.lo.x());
+    const Vec3 c = 0.5 * (box.lo + box.hi), h = 0.3 * (box.hi - box.lo);
+    p.rect = std::array<double, 4>{c.x() - h.x(), c.y() - h.y(), c.x() + h.x(), c.y() + h.y()};
+    const Collected a = scan(mesh, ball_cutter(4), p);
+    const ScanElements full = build_scan_elements(mesh, 2);
+    Collected b;
+    RunControl control;
+    run_scan(
+        full, ball_cutter(4), p,
+        [&](const ScanChunk& ch) {
+          b.cl.append(ch.cl);
+          b.segments.insert(b.segments.end(), ch.segments.begin(), ch.segments.end());
+        },
+        control);
+    EXPECT_GT(a.cl.path_kinds.size(), 10u);
+    EXPECT_EQ(a.cl.xyz, b.cl.xyz);
+    EXPECT_EQ(a.cl.path_kinds, b.cl.path_kinds);
+    EXPECT_EQ(a.segments.size(), b.segments.size());
+    // Elements built for other planes are refused.
+    ScanParams both = p;
+    both.families = ScanFamilies::kBoth;
+    const ScanElements one = build_scan_elements(
+        mesh, 2, fam == ScanFamilies::kX ? std::array<std::vector<double>, 2>{{{}, {0.5}}}
+                                         : std::array<std::vector<double>, 2>{{{0.5}, {}}});
+    EXPECT_THROW(run_scan(one, ball_cutter(4), both, [](const ScanChunk&) {}, control),
+                 std::logic_error);
+  }
+}
+
 TEST(Scan, RejectsBadInput) {
   std::mt19937_64 rng(1);
   const TriangleMesh mesh = terrain(rng, 4);
