@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/cli/huge_pages.hpp"
 #include "engine/parallel.hpp"
 #include "engine/pencil.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
@@ -24,6 +25,7 @@
 using namespace ncpath;
 
 int main(int argc, char** argv) {
+  ncpath::cli::reexec_with_huge_pages(argv);  // as the ncpath command does
   CLI::App app{"ncpath pencil-cut representation invariance"};
   std::vector<std::string> meshes;
   double interval = 0.5, step_down = 1.0, fit_xy = 200;

@@ -15,6 +15,7 @@
 #include <filesystem>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/cli/huge_pages.hpp"
 #include "engine/parallel.hpp"
 #include "engine/pencil.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
@@ -22,6 +23,7 @@
 using namespace ncpath;
 
 int main(int argc, char** argv) {
+  ncpath::cli::reexec_with_huge_pages(argv);  // as the ncpath command does
   CLI::App app{"ncpath pencil-cut throughput"};
   std::vector<std::string> meshes;
   std::vector<double> intervals = {0.5, 0.1};

@@ -16,6 +16,7 @@
 #include <filesystem>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/cli/huge_pages.hpp"
 #include "batch/jobs/job_spec.hpp"
 #include "engine/parallel.hpp"
 #include "engine/raster.hpp"
@@ -26,6 +27,7 @@
 using namespace ncpath;
 
 int main(int argc, char** argv) {
+  ncpath::cli::reexec_with_huge_pages(argv);  // as the ncpath command does
   CLI::App app{"ncpath scan throughput"};
   std::string mesh_path, tool_text = "ball:5", families = "both";
   double fit_xy = 200, tolerance = 0.001;

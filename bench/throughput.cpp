@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/cli/huge_pages.hpp"
 #include "batch/jobs/job_spec.hpp"
 #include "engine/drop_index.hpp"
 #include "engine/facet_table.hpp"
@@ -73,6 +74,7 @@ Result run_embree_baseline(const TriangleMesh& mesh, const Cutter& tool, const R
 }  // namespace
 
 int main(int argc, char** argv) {
+  ncpath::cli::reexec_with_huge_pages(argv);  // as the ncpath command does
   CLI::App app{"ncpath raster throughput"};
   std::string mesh_path, tool_text = "ball:5";
   double fit_xy = 200;
