@@ -49,15 +49,16 @@ PathOut guard_path(const MeshVerifier& mesh, const SweptTool& tool, const ClChun
 
 }  // namespace
 
-ChordGuard::ChordGuard(const TriangleMesh& mesh, const Cutter& cutter, double stock) : mesh_(mesh) {
+ChordGuard::ChordGuard(std::shared_ptr<const MeshVerifier> index, const Cutter& cutter,
+                       double stock)
+    : mesh_(std::move(index)) {
   tool_.cutter = cutter;
   tool_.stock = stock;
-  seconds_ = built_.seconds();
 }
 
 ClChunk ChordGuard::apply(const ClChunk& in) {
   Stopwatch clock;
-  ClChunk out = guard_chords(mesh_, tool_, in, stats_);
+  ClChunk out = guard_chords(*mesh_, tool_, in, stats_);
   seconds_ += clock.seconds();
   return out;
 }

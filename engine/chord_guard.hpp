@@ -12,9 +12,11 @@
 // becomes a climb and a move over the edge instead of a chord through the part.
 //
 // Sharing: this stage and the job's verifier use the same swept-tool kernel
-// (kernels/verify/swept_tool.hpp, tested against the drop-cutter as an independent oracle);
-// the verifier's own instance re-checks every move afterwards.
+// (kernels/verify/swept_tool.hpp, tested against the drop-cutter as an independent oracle)
+// and the same read-only index of the mesh (built once: batch/jobs/shared_mesh.hpp); the
+// verifier re-checks every move afterwards.
 #include <cstdint>
+#include <memory>
 
 #include "engine/cl_chunk.hpp"
 #include "engine/run_control.hpp"
@@ -35,17 +37,17 @@ struct ChordGuardStats {
 ClChunk guard_chords(const MeshVerifier& mesh, const SweptTool& tool, const ClChunk& in,
                      ChordGuardStats& stats);
 
-// The stage for one job: the mesh's own swept-tool index, the tool, and the running stats.
+// The stage for one job: the mesh's swept-tool index (shared with the job's verifier), the
+// tool, and the running stats.
 class ChordGuard {
  public:
-  ChordGuard(const TriangleMesh& mesh, const Cutter& cutter, double stock = 0);
+  ChordGuard(std::shared_ptr<const MeshVerifier> index, const Cutter& cutter, double stock = 0);
   ClChunk apply(const ClChunk& in);
   const ChordGuardStats& stats() const { return stats_; }
-  double seconds() const { return seconds_; }  // building the index, and in apply so far
+  double seconds() const { return seconds_; }  // in apply, so far
 
  private:
-  Stopwatch built_;  // first: it times the index built by mesh_'s initialiser
-  MeshVerifier mesh_;
+  std::shared_ptr<const MeshVerifier> mesh_;
   SweptTool tool_;
   ChordGuardStats stats_;
   double seconds_ = 0;

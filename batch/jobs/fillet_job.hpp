@@ -11,12 +11,14 @@
 //   - every FilletStats field as a statistic, the reference pencil run's prefixed
 //     `reference_`.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "batch/jobs/job_spec.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "batch/output/gcode_writer.hpp"
 #include "engine/run_control.hpp"
+#include "engine/verify_mesh.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
 
 namespace ncpath::jobs {
@@ -26,10 +28,11 @@ struct FilletJobSummary {
   double compute_s = 0;      // run_fillet: the reference pencil run and the passes
 };
 
-// mesh: already transformed. Throws std::invalid_argument when the tool is not a ball, is
-// not smaller than the reference, or the parameters are bad (the engine's message);
-// Cancelled.
-FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
+// mesh: already transformed; swept: its swept-tool index (the chord guard's). Throws
+// std::invalid_argument when the tool is not a ball, is not smaller than the reference, or the
+// parameters are bad (the engine's message); Cancelled.
+FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh,
+                                std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats);
 

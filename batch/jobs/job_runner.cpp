@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -14,6 +15,7 @@
 #include "batch/jobs/pocket_job.hpp"
 #include "batch/jobs/points_csv.hpp"
 #include "batch/jobs/scan_job.hpp"
+#include "batch/jobs/shared_mesh.hpp"
 #include "batch/jobs/zlevel_job.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "engine/chord_guard.hpp"
@@ -30,53 +32,64 @@ using out::StatValue;
 
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
-// Reads the mesh, transforms it and runs the raster, scan, zlevel, pencil, fillet or drop
-// operation into cl.
-void run_mesh_job(const JobSpec& job, out::ClJob& cl,
+// The mesh's swept-tool index for the chord guard; its build time (0 when the job's verifier
+// or an earlier job on the same mesh built it) as the statistic swept_index_s.
+std::shared_ptr<const MeshVerifier> timed_swept_index(SharedMesh& shared,
+                                                      std::vector<StatValue>& stats) {
+  Stopwatch clock;
+  std::shared_ptr<const MeshVerifier> index = shared.swept_index();
+  stats.push_back({"swept_index_s", clock.seconds(), "s"});
+  return index;
+}
+
+// Runs the raster, scan, zlevel, pencil, fillet or drop operation on the job's (shared,
+// transformed) mesh into cl.
+void run_mesh_job(const JobSpec& job, SharedMesh& shared, bool reused, out::ClJob& cl,
                   const std::function<out::GcodeWriter*(double part_top)>& open_gcode,
                   const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o,
                   std::unique_ptr<JobVerifier>& verifier) {
-  Stopwatch read_clock;
-  io::MeshReadResult in = io::read_mesh(job.input);
+  const io::MeshReadResult& in = shared.in();
   stats.push_back({"input_format", in.stats.format, ""});
   stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
   stats.push_back({"facets_read", i64(in.stats.facets_read), ""});
   stats.push_back({"facets_skipped_degenerate_in_file", i64(in.stats.facets_degenerate), ""});
-  const TransformOutcome tr = apply_transform(job.transform, in.mesh);
-  if (!tr.ok()) throw std::invalid_argument("transform." + tr.error);
-  stats.push_back({"transform_scale", tr.scale, ""});
-  stats.push_back({"read_s", read_clock.seconds(), "s"});
+  stats.push_back({"transform_scale", shared.transform_scale(), ""});
+  stats.push_back({"read_s", reused ? 0.0 : shared.read_s(), "s"});
+  stats.push_back({"mesh_shared", std::int64_t{reused}, ""});
   // The point operation is a probe: its points are answers, not moves to run.
   if (job.verify != VerifyMode::kOff && job.operation != Operation::kDrop) {
     Stopwatch index_clock;
-    verifier = mesh_verifier(job, in.mesh);
+    verifier = mesh_verifier(job, shared.swept_index());
     if (verifier) verifier->attach(cl);
     stats.push_back({"verify_index_s", index_clock.seconds(), "s"});
   }
 
-  out::GcodeWriter* gcode = open_gcode(bounding_box(in.mesh).hi.z());
+  const TriangleMesh& mesh = shared.mesh();
+  out::GcodeWriter* gcode = open_gcode(bounding_box(mesh).hi.z());
   RunControl control;
   control.progress = obs.progress;
   if (job.operation == Operation::kScan) {
-    const ScanJobSummary r = run_scan_job(job, in.mesh, cl, gcode, control, stats);
+    const ScanJobSummary r = run_scan_job(job, mesh, cl, gcode, control, stats);
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kZLevel) {
-    const ZLevelJobSummary r = run_zlevel_job(job, in.mesh, cl, gcode, control, stats);
+    const ZLevelJobSummary r = run_zlevel_job(job, mesh, cl, gcode, control, stats);
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kPencil) {
-    const PencilJobSummary r = run_pencil_job(job, in.mesh, cl, gcode, control, stats);
+    const PencilJobSummary r =
+        run_pencil_job(job, mesh, timed_swept_index(shared, stats), cl, gcode, control, stats);
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kFillet) {
-    const FilletJobSummary r = run_fillet_job(job, in.mesh, cl, gcode, control, stats);
+    const FilletJobSummary r =
+        run_fillet_job(job, mesh, timed_swept_index(shared, stats), cl, gcode, control, stats);
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
@@ -84,7 +97,7 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
   // Raster chords between exact drop points are lifted where they would cut in (the drop
   // operation's points are answers, not moves).
   std::optional<ChordGuard> guard;
-  if (job.operation == Operation::kRaster) guard.emplace(in.mesh, job.tool);
+  if (job.operation == Operation::kRaster) guard.emplace(timed_swept_index(shared, stats), job.tool);
   auto sink = [&](const ClChunk& raw) {
     const ClChunk guarded = guard ? guard->apply(raw) : ClChunk{};
     const ClChunk& c = guard ? guarded : raw;
@@ -104,7 +117,7 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
     stats.push_back({"points", i64(o.points), ""});
   };
   if (job.operation == Operation::kRaster) {
-    const RasterStats st = run_raster(in.mesh, job.tool, job.raster, sink, control);
+    const RasterStats st = run_raster(mesh, job.tool, job.raster, sink, control);
     o.points = st.cut_points + st.link_points + guard->stats().points_added;
     push_guard_stats(*guard, stats);
     common(st.facets, st.facets_degenerate, st.index_s, st.compute_s, st.sink_s);
@@ -121,7 +134,7 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
   } else {
     const PointList pts = read_points_csv(job.points);
     const DropPointsStats st =
-        run_drop_points(in.mesh, job.tool, pts.xy, pts.path_sizes, sink, control);
+        run_drop_points(mesh, job.tool, pts.xy, pts.path_sizes, sink, control);
     o.points = st.points;
     common(st.facets, st.facets_degenerate, st.index_s, st.compute_s, st.sink_s);
     stats.push_back({"no_contact_points", i64(st.no_contact), ""});
@@ -129,8 +142,8 @@ void run_mesh_job(const JobSpec& job, out::ClJob& cl,
 }
 
 // Runs one job; fills stats and returns the outcome. Never throws for job-level problems.
-JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
-                   std::vector<StatValue>& stats) {
+JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out::ClJob& cl,
+                   const BatchObserver& obs, std::vector<StatValue>& stats) {
   JobOutcome o;
   o.name = job.name;
   Stopwatch all;
@@ -177,7 +190,9 @@ JobOutcome run_one(const JobSpec& job, out::ClJob& cl, const BatchObserver& obs,
         o.points = r.points;
         o.compute_s = r.compute_s;
       } else {
-        run_mesh_job(job, cl, open_gcode, obs, stats, o, verifier);
+        bool reused = false;
+        const std::shared_ptr<SharedMesh> mesh = meshes.get(index, reused);
+        run_mesh_job(job, *mesh, reused, cl, open_gcode, obs, stats, o, verifier);
       }
       std::string verify_failure, bound_warning;
       if (verifier) {
@@ -239,6 +254,8 @@ std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& o
   }
   out::ClFile file(batch.output, NCPATH_VERSION);
   std::vector<JobOutcome> outcomes;
+  MeshCache meshes(batch.jobs);                  // meshes read once, shared by their jobs
+  std::map<std::string, std::string> input_sha;  // input file -> its SHA-256
   for (std::size_t i = 0; i < batch.jobs.size(); ++i) {
     const JobSpec& job = batch.jobs[i];
     if (obs.job_started) obs.job_started(i, batch.jobs.size(), job);
@@ -246,15 +263,19 @@ std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& o
     info.operation = operation_name(job.operation);
     info.input_path = job.input.string();
     try {
-      info.input_sha256 = out::sha256_file(job.input);
+      auto [it, fresh] = input_sha.try_emplace(job.input.string());
+      if (fresh) it->second = out::sha256_file(job.input);
+      info.input_sha256 = it->second;
     } catch (const std::exception&) {
+      input_sha.erase(job.input.string());
       info.input_sha256 = "";  // unreadable input: the job reports why
     }
     info.tool_json = job.error.empty() ? tool_json(job.tool) : "{}";
     info.params_json = params_json(job);
     out::ClJob cl = file.begin_job(job.name, info);
     std::vector<StatValue> stats;
-    JobOutcome o = run_one(job, cl, obs, stats);
+    JobOutcome o = run_one(job, i, meshes, cl, obs, stats);
+    meshes.done(i);
     cl.set_status(o.status, o.message);
     cl.write_stats(stats);
     cl.close();

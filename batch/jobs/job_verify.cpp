@@ -119,13 +119,14 @@ class Pocket3dJobVerifier : public ProfileJobVerifier {
 
 class MeshJobVerifier : public JobVerifier {
  public:
-  MeshJobVerifier(const JobSpec& job, const TriangleMesh& mesh, const MeshVerifyParams& p)
-      : JobVerifier(job.verify), tool_(job.tool), params_(p), index_(mesh) {}
+  MeshJobVerifier(const JobSpec& job, std::shared_ptr<const MeshVerifier> index,
+                  const MeshVerifyParams& p)
+      : JobVerifier(job.verify), tool_(job.tool), params_(p), index_(std::move(index)) {}
 
  protected:
   VerifyReport check(const ClChunk& cl, std::uint64_t first_move,
                      std::uint32_t first_path) override {
-    const MeshVerifyReport m = verify_moves(index_, tool_, cl, params_, first_move, first_path);
+    const MeshVerifyReport m = verify_moves(*index_, tool_, cl, params_, first_move, first_path);
     if (!m.error.empty()) throw std::runtime_error("verifier: " + m.error);
     VerifyReport r;
     r.moves = m.moves;
@@ -143,7 +144,7 @@ class MeshJobVerifier : public JobVerifier {
  private:
   Cutter tool_;
   MeshVerifyParams params_;
-  MeshVerifier index_;
+  std::shared_ptr<const MeshVerifier> index_;
 };
 
 }  // namespace
@@ -248,11 +249,12 @@ std::unique_ptr<JobVerifier> pocket3d_verifier(const JobSpec& job) {
   return std::make_unique<Pocket3dJobVerifier>(job, p, in, reach);
 }
 
-std::unique_ptr<JobVerifier> mesh_verifier(const JobSpec& job, const TriangleMesh& mesh) {
+std::unique_ptr<JobVerifier> mesh_verifier(const JobSpec& job,
+                                           std::shared_ptr<const MeshVerifier> index) {
   MeshVerifyParams p;
   if (job.operation == Operation::kPencil) p.stock = job.pencil.stock;
   if (job.operation == Operation::kFillet) p.stock = job.fillet.stock;
-  return std::make_unique<MeshJobVerifier>(job, mesh, p);
+  return std::make_unique<MeshJobVerifier>(job, std::move(index), p);
 }
 
 JobSpec stored_job_spec(const std::string& operation, const std::string& input_path,

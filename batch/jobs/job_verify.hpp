@@ -12,6 +12,7 @@
 
 #include "batch/jobs/job_spec.hpp"
 #include "batch/output/cl_writer.hpp"
+#include "engine/verify_mesh.hpp"
 #include "engine/chord_guard.hpp"
 #include "engine/verify_report.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
@@ -58,8 +59,10 @@ class JobVerifier {
 // checked by the mesh of the surface: engine/verify_surface.hpp).
 std::unique_ptr<JobVerifier> profile_verifier(const JobSpec& job);
 
-// For mesh jobs: the mesh as the job uses it (transformed).
-std::unique_ptr<JobVerifier> mesh_verifier(const JobSpec& job, const TriangleMesh& mesh);
+// For mesh jobs: the swept-tool index of the mesh as the job uses it (transformed), e.g.
+// SharedMesh::swept_index() (the verifier only reads it).
+std::unique_ptr<JobVerifier> mesh_verifier(const JobSpec& job,
+                                           std::shared_ptr<const MeshVerifier> index);
 
 // For pocket3d jobs: the walls and islands as above, the ball against the exact bottom, and
 // the realised scallop on a grid (stats verify_max_scallop, verify_scallop_bound).

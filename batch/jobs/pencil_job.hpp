@@ -11,12 +11,14 @@
 //     (layout in docs/hdf5-schema.md);
 //   - every PencilStats field as a statistic.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "batch/jobs/job_spec.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "batch/output/gcode_writer.hpp"
 #include "engine/run_control.hpp"
+#include "engine/verify_mesh.hpp"
 #include "kernels/mesh/triangle_mesh.hpp"
 
 namespace ncpath::jobs {
@@ -26,9 +28,11 @@ struct PencilJobSummary {
   double compute_s = 0;      // run_pencil, all stages
 };
 
-// mesh: already transformed. Throws std::invalid_argument when the tool is not a ball, the
-// parameters are bad or the mesh has no usable facet (the engine's message); Cancelled.
-PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
+// mesh: already transformed; swept: its swept-tool index (the chord guard's). Throws
+// std::invalid_argument when the tool is not a ball, the parameters are bad or the mesh has no
+// usable facet (the engine's message); Cancelled.
+PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh,
+                                std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats);
 

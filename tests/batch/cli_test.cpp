@@ -91,6 +91,48 @@ params = { points = "xy.csv" }
   EXPECT_EQ(kinds[2], 0);
 }
 
+// Jobs on the same file and transform share its read mesh and swept-tool index (the
+// verifier's and the chord guard's): each writes the datasets it writes when run alone, and
+// says whether it reused the mesh; another transform of the same file is read again.
+TEST(Cli, JobsOnOneMeshShareItAndWriteWhatTheyWriteAlone) {
+  const auto dir = fixture_dir();
+  const std::string jobs[3] = {
+      "name = \"a\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+      "params = { interval = 2, step = 0.5 }\n",
+      "name = \"b\"\noperation = \"zlevel\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+      "params = { levels = [2.0, 2.5] }\n",
+      "name = \"c\"\ninput = \"part.stl\"\ntool = \"ball:4\"\ntransform = { scale = 1.5 }\n"
+      "params = { interval = 2, step = 0.5 }\n"};
+  std::ofstream(dir / "all.toml") << "output = \"all.h5\"\n[[job]]\n" << jobs[0] << "[[job]]\n"
+                                  << jobs[1] << "[[job]]\n" << jobs[2];
+  for (int k = 0; k < 3; ++k)
+    std::ofstream(dir / ("one" + std::to_string(k) + ".toml"))
+        << "output = \"one" << k << ".h5\"\n[[job]]\n" << jobs[k];
+  for (const std::string name : {"all", "one0", "one1", "one2"}) {
+    const CmdResult r = ncpath("run " + (dir / (name + ".toml")).string() + " --quiet");
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.output;
+  }
+  h5::Id all = h5::open_read(dir / "all.h5");
+  const std::int64_t shared[3] = {0, 1, 0};
+  for (int k = 0; k < 3; ++k) {
+    h5::Id one = h5::open_read(dir / ("one" + std::to_string(k) + ".h5"));
+    const std::string job = std::string("/jobs/") + char('a' + k);
+    EXPECT_EQ(h5::read_all<std::int64_t>(all, job + "/stats/mesh_shared", H5T_NATIVE_INT64),
+              std::vector<std::int64_t>{shared[k]})
+        << job;
+    const auto points = h5::read_all<double>(all, job + "/cl/points", H5T_NATIVE_DOUBLE);
+    EXPECT_GT(points.size(), 30u) << job;
+    EXPECT_EQ(points, h5::read_all<double>(one, job + "/cl/points", H5T_NATIVE_DOUBLE)) << job;
+    EXPECT_EQ(h5::read_all<std::int64_t>(all, job + "/cl/path_offsets", H5T_NATIVE_INT64),
+              h5::read_all<std::int64_t>(one, job + "/cl/path_offsets", H5T_NATIVE_INT64))
+        << job;
+    h5::Id g(H5Gopen2(all, job.c_str(), H5P_DEFAULT));
+    h5::Id g1(H5Gopen2(one, job.c_str(), H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(g, "input_sha256"), h5::attr_str(g1, "input_sha256"));
+    EXPECT_EQ(h5::attr_str(g, "status"), "ok");
+  }
+}
+
 TEST(Cli, OneAndTwoThreadsWriteIdenticalDatasets) {
   const auto dir = fixture_dir();
   for (const char* t : {"1", "2"}) {
