@@ -9,6 +9,7 @@
 #include <span>
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
@@ -35,6 +36,18 @@ inline int max_threads() {
   return static_cast<int>(
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 }
+
+// One T per thread that uses it, made on the thread's first local() call and kept until the
+// object ends: scratch buffers that parallel bodies reuse from one call to the next. What a
+// body computes must not depend on what an earlier body left in them.
+template <class T>
+class PerThread {
+ public:
+  T& local() { return slots_.local(); }
+
+ private:
+  tbb::enumerable_thread_specific<T> slots_;
+};
 
 // Calls body(begin, end) over disjoint sub-ranges covering [0, n). `grain` is the smallest
 // sub-range worth a task. Bodies must write only to slots they own (count, scan, fill).

@@ -124,6 +124,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   // theirs (kernels/scan/zlevel.hpp ZLevelInside): the same for any thread count. Their
   // candidates leave out the elements lying deep inside that region (zlevel_filter_deep).
   ZLevelInside inside, next_inside;
+  par::PerThread<ZLevelWorkspace> workspaces;  // each thread's kernel buffers, level to level
   std::size_t chunk_end = 0;
   std::vector<std::uint32_t> filtered;  // by_top[0, filtered_n) less the deep ones
   std::size_t filtered_n = 0;
@@ -141,6 +142,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     const double z = levels[i], zk = z - grow;
     const std::size_t n = prefix(*cand, zk);
     ZLevelParams kp = kernel;
+    kp.workspace = &workspaces.local();
     kp.inside = &inside;
     kp.candidates_filtered = cand == &filtered;
     const ZLevelResult r =

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <optional>
 
 #include "kernels/scan/zlevel_detail.hpp"
 
@@ -126,11 +127,10 @@ void sort_by_depth(const Grid& grid, const std::vector<Region>& regions, const L
     }
 }
 
-// The per-level buffers, kept by each thread from one level to the next: a dense mesh's level
-// builds tens of MB of regions, curves and cell lists, and fresh memory for them each time
-// costs page faults (zlevel_contours does not call itself: one set per thread suffices). The
-// capacity stays with the thread: about 55 MB a thread after a 1.2 M-facet mesh.
-struct Workspace {
+}  // namespace
+
+// The per-level buffers (ZLevelWorkspace): about 55 MB after a level of a 1.2 M-facet mesh.
+struct ZLevelWorkspace::Buffers {
   std::vector<std::uint64_t> bits, pbits, vbits;
   std::vector<std::uint32_t> cand, stamp;
   std::vector<Box4f> cand_box, rbox;
@@ -141,10 +141,14 @@ struct Workspace {
   std::vector<Split> splits;
 };
 
-Workspace& workspace() {
-  thread_local Workspace ws;
-  return ws;
-}
+ZLevelWorkspace::ZLevelWorkspace() : buffers_(std::make_unique<Buffers>()) {}
+ZLevelWorkspace::~ZLevelWorkspace() = default;
+ZLevelWorkspace::ZLevelWorkspace(ZLevelWorkspace&&) noexcept = default;
+ZLevelWorkspace& ZLevelWorkspace::operator=(ZLevelWorkspace&&) noexcept = default;
+
+namespace {
+
+using Workspace = ZLevelWorkspace::Buffers;
 
 // Interior cells: the discs of the mesh points at the ends of candidate edges (each inside U:
 // the sphere belongs to a facet's neighbourhood), which cover U's inside up to about the
@@ -271,7 +275,9 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   if (!(lv.R > 0)) return result;
 
   // Candidate set as a bitmap: sorted, without repeats, independent of the given order.
-  Workspace& ws = workspace();
+  std::optional<ZLevelWorkspace> own;
+  if (!params.workspace) own.emplace();
+  Workspace& ws = params.workspace ? params.workspace->buffers() : own->buffers();
   std::vector<std::uint64_t>& bits = ws.bits;
   bits.assign((n_el + 63) / 64, 0);
   for (std::uint32_t id : candidates)

@@ -62,6 +62,7 @@
 // Output is deterministic: it does not depend on the order or repetition of candidates.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -212,6 +213,22 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell = 0);
 void zlevel_filter_deep(const OffsetElements& el, std::span<const std::uint32_t> ids,
                         const ZLevelInside& inside, std::vector<std::uint32_t>& out);
 
+// The kernel's per-level buffers (regions, curves, cell lists, splits: tens of MB a level on
+// a dense mesh). Reusing one from level to level spares fresh memory and its page faults; the
+// result never depends on what an earlier call left in it. One per thread at a time.
+class ZLevelWorkspace {
+ public:
+  ZLevelWorkspace();
+  ~ZLevelWorkspace();
+  ZLevelWorkspace(ZLevelWorkspace&&) noexcept;
+  ZLevelWorkspace& operator=(ZLevelWorkspace&&) noexcept;
+  struct Buffers;
+  Buffers& buffers() { return *buffers_; }
+
+ private:
+  std::unique_ptr<Buffers> buffers_;
+};
+
 struct ZLevelParams {
   double cell = 0;  // pruning grid cell, mm; 0: R / 2 (raised if the grid would be huge)
   bool skip_unreachable = true;  // use OffsetElements' edge/vertex reachability flags
@@ -225,6 +242,8 @@ struct ZLevelParams {
   // The facet and edge candidates were kept by zlevel_filter_deep against `inside` (the same
   // test the kernel would make again): only vertices are tested.
   bool candidates_filtered = false;
+  // Optional: buffers to reuse (the caller's, e.g. one per thread); null: the call's own.
+  ZLevelWorkspace* workspace = nullptr;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any
