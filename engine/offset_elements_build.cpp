@@ -12,18 +12,28 @@
 namespace ncpath {
 
 std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& v) {
-  std::vector<std::uint32_t> order(v.size());
-  std::iota(order.begin(), order.end(), 0u);
-  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const Vec3 &p = v[a], &q = v[b];
-    if (p.x() != q.x()) return p.x() < q.x();
-    if (p.y() != q.y()) return p.y() < q.y();
-    if (p.z() != q.z()) return p.z() < q.z();
-    return a < b;
+  // Sorted as contiguous (x, y, z, index) records: the sort reads no other memory.
+  struct Key {
+    double x, y, z;
+    std::uint32_t i;
+  };
+  std::vector<Key> order(v.size());
+  par::for_each(v.size(), 65536, [&](std::size_t i) {
+    order[i] = {v[i].x(), v[i].y(), v[i].z(), std::uint32_t(i)};
+  });
+  par::sort(order.begin(), order.end(), [](const Key& p, const Key& q) {
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return p.i < q.i;
   });
   std::vector<std::uint32_t> rep(v.size());
-  for (std::size_t k = 0; k < order.size(); ++k)
-    rep[order[k]] = k > 0 && v[order[k]] == v[order[k - 1]] ? rep[order[k - 1]] : order[k];
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Key& a = order[k];
+    const bool same = k > 0 && a.x == order[k - 1].x && a.y == order[k - 1].y &&
+                      a.z == order[k - 1].z;
+    rep[a.i] = same ? rep[order[k - 1].i] : a.i;
+  }
   return rep;
 }
 

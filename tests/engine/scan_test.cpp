@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <filesystem>
 #include <random>
 
 #include "engine/drop_index.hpp"
+#include "engine/offset_elements_build.hpp"
 #include "engine/parallel.hpp"
 #include "engine/scan.hpp"
 #include "kernels/scan/envelope.hpp"
@@ -231,6 +233,28 @@ TEST(Scan, OneFamilyScanEqualsTheScanWithFullIndexes) {
     EXPECT_THROW(run_scan(one, ball_cutter(4), both, [](const ScanChunk&) {}, control),
                  std::logic_error);
   }
+}
+
+// The weld's map: every vertex to the first (lowest index) of the vertices exactly equal to
+// it; -0 equals 0, nearly equal vertices stay apart. Checked against a std::map.
+TEST(Scan, ExactDuplicateMapSendsEachVertexToItsFirstCopy) {
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> coord(-3, 3), pick(0, 99);
+  std::vector<Vec3> v;
+  for (int i = 0; i < 20000; ++i) {
+    Vec3 p(coord(rng), coord(rng), coord(rng));
+    if (pick(rng) == 0 && !v.empty()) p = v[std::size_t(pick(rng)) % v.size()];
+    if (pick(rng) == 1) p.x() = p.x() == 0 ? -0.0 : std::nextafter(p.x(), 9.0);
+    v.push_back(p);
+  }
+  std::map<std::array<double, 3>, std::uint32_t> first;
+  std::vector<std::uint32_t> want(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::array<double, 3> key = {v[i].x() + 0.0, v[i].y() + 0.0, v[i].z() + 0.0};
+    want[i] = first.try_emplace(key, std::uint32_t(i)).first->second;
+  }
+  EXPECT_LT(first.size(), v.size() / 2);  // many repeats
+  EXPECT_EQ(exact_duplicate_map(v), want);
 }
 
 TEST(Scan, RejectsBadInput) {
