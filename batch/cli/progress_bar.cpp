@@ -10,9 +10,24 @@ bool stderr_is_terminal() { return isatty(STDERR_FILENO) == 1; }
 
 ProgressBar::ProgressBar(bool enabled) : enabled_(enabled) {}
 
+std::string eta_text(double elapsed_s, std::uint64_t done, std::uint64_t total) {
+  if (done == 0 || done >= total || !(elapsed_s >= 0)) return "";
+  const double left = elapsed_s * static_cast<double>(total - done) / static_cast<double>(done);
+  const auto s = static_cast<long long>(left + 0.5);
+  char buf[48];
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "ETA %lldh%02lldm", s / 3600, s / 60 % 60);
+  else if (s >= 60)
+    std::snprintf(buf, sizeof buf, "ETA %lldm%02llds", s / 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "ETA %llds", s);
+  return buf;
+}
+
 void ProgressBar::start(const std::string& label) {
   label_ = label;
   last_ = {};
+  started_ = std::chrono::steady_clock::now();
 }
 
 void ProgressBar::update(std::uint64_t done, std::uint64_t total) {
@@ -24,8 +39,9 @@ void ProgressBar::update(std::uint64_t done, std::uint64_t total) {
   const int fill = static_cast<int>(kWidth * done / total);
   std::string bar(fill, '#');
   bar.resize(kWidth, '.');
-  std::fprintf(stderr, "\r%s [%s] %3d%%", label_.c_str(), bar.c_str(),
-               static_cast<int>(100 * done / total));
+  const double elapsed = std::chrono::duration<double>(now - started_).count();
+  std::fprintf(stderr, "\r%s [%s] %3d%% %s\033[K", label_.c_str(), bar.c_str(),
+               static_cast<int>(100 * done / total), eta_text(elapsed, done, total).c_str());
   std::fflush(stderr);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// A one-line progress bar on stderr, redrawn at most every 100 ms. Silent unless stderr is
-// a terminal and the user did not ask for --quiet.
+// A one-line progress bar on stderr, redrawn at most every 100 ms, with the time left in the
+// current stage. Silent unless stderr is a terminal and the user did not ask for --quiet.
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -18,7 +18,12 @@ class ProgressBar {
   bool enabled_;
   std::string label_;
   std::chrono::steady_clock::time_point last_{};
+  std::chrono::steady_clock::time_point started_{};
 };
+
+// "ETA 1m05s" for a stage `elapsed_s` into it with `done` of `total` units done (the rest at
+// the same pace); "" before the first unit or at the end.
+std::string eta_text(double elapsed_s, std::uint64_t done, std::uint64_t total);
 
 // True when stderr is a terminal.
 bool stderr_is_terminal();
