@@ -17,6 +17,10 @@ std::string read_file_bytes(const std::filesystem::path& path);
 // Parsers over a file already in memory; `path` is only used for messages.
 MeshReadResult parse_stl(const std::filesystem::path& path, std::string_view bytes);
 MeshReadResult parse_off(const std::filesystem::path& path, std::string_view bytes);
+// An ASCII STL in pieces of about piece_bytes, split at 'facet' lines and parsed in parallel:
+// the same result as one piece, and on any error the whole-file parser's exact message.
+MeshReadResult parse_ascii_stl(const std::filesystem::path& path, std::string_view bytes,
+                               std::size_t piece_bytes);
 
 // True when the text starts (after whitespace, a UTF-8 byte order mark and, if
 // allow_comments, '#' comment lines) with `keyword` followed by whitespace or the end.

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "batch/io/reader_support.hpp"
+#include "engine/parallel.hpp"
 
 namespace ncpath::io::detail {
 namespace {
@@ -19,6 +21,9 @@ constexpr std::uint64_t kFirstFacet = 84;  // header + uint32 facet count
 constexpr std::uint64_t kFacetBytes = 50;  // normal, 3 vertices (12 float32) + uint16
 // A soup mesh has 3 vertices per facet, indexed with uint32.
 constexpr std::uint64_t kMaxSoupFacets = std::numeric_limits<std::uint32_t>::max() / 3;
+// ASCII files are parsed in pieces of about this size in parallel, split at 'facet' lines
+// (the pieces depend on the bytes only, not on the thread count).
+constexpr std::size_t kAsciiPieceBytes = std::size_t(8) << 20;
 
 const char* const kAxis[3] = {"x", "y", "z"};
 
@@ -112,6 +117,29 @@ class AsciiStlParser {
     const std::size_t guess = std::min<std::size_t>(bytes.size() / 250 + 16, kMaxSoupFacets);
     builder_.reserve(3 * guess, guess);
   }
+
+  // Parses a piece of the file that starts inside a solid at a 'facet' line (or at the file's
+  // start, then outside any solid): facets, 'endsolid' and 'solid' lines, in any number.
+  // Returns whether the piece ends inside a solid; throws ReadError on anything else (the
+  // caller then parses the whole file in one go for the exact message).
+  bool parse_piece(bool in_solid) {
+    for (std::string_view tok = scan_.next_token(); !tok.empty(); tok = scan_.next_token()) {
+      if (in_solid && keyword_is(tok, "facet")) {
+        parse_facet();
+      } else if (in_solid && keyword_is(tok, "endsolid")) {
+        scan_.skip_line();
+        in_solid = false;
+      } else if (!in_solid && keyword_is(tok, "solid")) {
+        scan_.skip_line();
+        in_solid = true;
+      } else {
+        fail("unexpected " + quote(tok));
+      }
+    }
+    return in_solid;
+  }
+  std::uint64_t facets() const { return facets_; }
+  MeshReadResult& result() { return builder_.result(); }
 
   MeshReadResult parse() {
     std::string_view tok = scan_.next_token();
@@ -229,7 +257,78 @@ class AsciiStlParser {
   std::uint64_t solid_line_ = 1;
 };
 
+// Start of the first line at or after `from` whose first token is 'facet' (any case), or
+// bytes.size().
+std::size_t next_facet_line(std::string_view bytes, std::size_t from) {
+  std::size_t p = bytes.find('\n', from == 0 ? 0 : from - 1);
+  while (p != std::string_view::npos) {
+    std::size_t q = p + 1;
+    while (q < bytes.size() && (bytes[q] == ' ' || bytes[q] == '\t' || bytes[q] == '\r')) ++q;
+    if (q + 5 < bytes.size() && keyword_is(bytes.substr(q, 5), "facet") &&
+        (bytes[q + 5] == ' ' || bytes[q + 5] == '\t' || bytes[q + 5] == '\r' ||
+         bytes[q + 5] == '\n'))
+      return p + 1;
+    p = bytes.find('\n', q);
+  }
+  return bytes.size();
+}
+
+// The pieces' facets in file order, as one soup (what the whole-file parser builds).
+MeshReadResult join_pieces(std::vector<MeshReadResult>& parts, std::uint64_t facets_in_file) {
+  MeshReadResult out = std::move(parts[0]);
+  for (std::size_t k = 1; k < parts.size(); ++k) {
+    auto& v = out.mesh.vertices;
+    const auto base = static_cast<std::uint32_t>(v.size());
+    v.insert(v.end(), parts[k].mesh.vertices.begin(), parts[k].mesh.vertices.end());
+    for (const auto& f : parts[k].mesh.facets)
+      out.mesh.facets.push_back({f[0] + base, f[1] + base, f[2] + base});
+    out.stats.facets_degenerate += parts[k].stats.facets_degenerate;
+  }
+  out.stats.facets_in_file = facets_in_file;
+  return out;
+}
+
 }  // namespace
+
+MeshReadResult parse_ascii_stl(const std::filesystem::path& path, std::string_view bytes,
+                               std::size_t piece_bytes) {
+  std::vector<std::size_t> cut = {0};
+  for (std::size_t at = piece_bytes; at < bytes.size(); at = cut.back() + piece_bytes) {
+    const std::size_t next = next_facet_line(bytes, at);
+    if (next >= bytes.size()) break;
+    cut.push_back(next);
+  }
+  cut.push_back(bytes.size());
+  const std::size_t pieces = cut.size() - 1;
+  if (pieces == 1) return AsciiStlParser(path, bytes).parse();
+  std::vector<MeshReadResult> parts(pieces);
+  std::vector<std::uint64_t> facets(pieces, 0);
+  std::vector<char> ends_in_solid(pieces, 0), ok(pieces, 0);
+  par::for_each(pieces, 1, [&](std::size_t k) {
+    try {
+      AsciiStlParser piece(path, bytes.substr(cut[k], cut[k + 1] - cut[k]));
+      ends_in_solid[k] = piece.parse_piece(k > 0);
+      facets[k] = piece.facets();
+      parts[k] = std::move(piece.result());
+      ok[k] = 1;
+    } catch (const ReadError&) {  // reported below by the whole-file parser
+    }
+  });
+  bool joined = ok[pieces - 1] && !ends_in_solid[pieces - 1];
+  std::uint64_t total = 0;
+  for (std::size_t k = 0; k < pieces; ++k) {
+    joined = joined && ok[k] && (k + 1 == pieces || ends_in_solid[k]);
+    total += facets[k];
+  }
+  // Anything but a clean split (an error, a piece ending outside a solid before a 'facet'
+  // line, too many facets): the whole-file parser gives the exact message or result.
+  if (!joined || total > kMaxSoupFacets || !starts_with_keyword(bytes, "solid", false))
+    return AsciiStlParser(path, bytes).parse();
+  MeshReadResult out = join_pieces(parts, total);
+  out.stats.facets_read = out.mesh.facets.size();
+  if (out.stats.facets_read == 0) return AsciiStlParser(path, bytes).parse();  // its message
+  return out;
+}
 
 MeshReadResult parse_stl(const std::filesystem::path& path, std::string_view bytes) {
   if (bytes.empty()) throw ReadError(path, "", "empty file (0 bytes): not an STL file");
@@ -237,7 +336,7 @@ MeshReadResult parse_stl(const std::filesystem::path& path, std::string_view byt
       kFirstFacet + kFacetBytes * load_u32(bytes.data() + kHeaderBytes) == bytes.size())
     return parse_binary(path, bytes);  // size-consistent: binary, whatever the header says
   if (starts_with_keyword(bytes, "solid", false) && looks_like_text(bytes))
-    return AsciiStlParser(path, bytes).parse();
+    return parse_ascii_stl(path, bytes, kAsciiPieceBytes);
   if (bytes.size() < kFirstFacet)
     throw ReadError(path, "",
                     "not an STL file: " + std::to_string(bytes.size()) +
