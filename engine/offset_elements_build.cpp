@@ -192,7 +192,7 @@ void y_reach_bound(const OffsetElements& el, std::uint32_t id, double& lo, doubl
     a = y - el.radius;
     b = y + el.radius;
   }
-  const double pad = 2e-9 * el.radius;  // twice element_y_reach's padding: its rounding
+  const double pad = 2 * tol::kReachPad * el.radius;  // over element_y_reach's own rounding
   lo = a - pad;
   hi = b + pad;
 }

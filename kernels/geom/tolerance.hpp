@@ -256,6 +256,18 @@ inline constexpr double kFlatTrimSlack = 1e-7;
 // rounding never leaves a sliver between it and the offset triangle that takes over.
 inline constexpr double kTrimExtend = 1e-9;
 
+// Dimensionless, relative to R. An element's y reach (element_y_reach: the extreme y of its
+// reachable directions, times R) is padded by this on both sides, so that the rounding of
+// the extreme directions never leaves out a plane the element meets; bounds of the reach
+// (engine/offset_elements_build.cpp y_reach_bound) pad twice this, over the reach's own
+// rounding.
+inline constexpr double kReachPad = 1e-9;
+
+// Dimensionless. A candidate extreme direction of a reachable cone (cone_y_extent) shorter
+// than this before normalising (a cross product of nearly parallel constraints) is dropped:
+// its direction is numerical noise; the constraints' own extremes cover it.
+inline constexpr double kConeDirectionMin = 1e-12;
+
 // ---- Upper envelope of a drive plane (kernels/scan/envelope) ----
 
 // mm. Two pieces within this of each other over an interval are tied there: the one with

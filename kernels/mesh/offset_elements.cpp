@@ -128,7 +128,7 @@ bool cone_y_extent(std::span<const Vec3> ws, double slack, double& dy_min, doubl
   dy_max = -INFINITY;
   auto consider = [&](const Vec3& d) {
     const double len = d.norm();
-    if (!(len > 1e-12)) return;
+    if (!(len > tol::kConeDirectionMin)) return;
     const Vec3 u = d / len;
     for (std::size_t i = 0; i < n; ++i)
       if (u.dot(wn[i]) > kIn) return;
@@ -206,7 +206,7 @@ bool element_y_reach(const OffsetElements& el, std::uint32_t id, double& lo, dou
     lo = c.y() + R * dy_min;
     hi = c.y() + R * dy_max;
   }
-  const double pad = 1e-9 * R;
+  const double pad = tol::kReachPad * R;
   lo -= pad;
   hi += pad;
   return true;
