@@ -97,7 +97,8 @@ void run_mesh_job(const JobSpec& job, SharedMesh& shared, bool reused, out::ClJo
   // Raster chords between exact drop points are lifted where they would cut in (the drop
   // operation's points are answers, not moves).
   std::optional<ChordGuard> guard;
-  if (job.operation == Operation::kRaster) guard.emplace(timed_swept_index(shared, stats), job.tool);
+  if (job.operation == Operation::kRaster)
+    guard.emplace(timed_swept_index(shared, stats), job.tool);
   auto sink = [&](const ClChunk& raw) {
     const ClChunk guarded = guard ? guard->apply(raw) : ClChunk{};
     const ClChunk& c = guard ? guarded : raw;

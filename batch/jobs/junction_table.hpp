@@ -26,7 +26,7 @@ class Column {
  public:
   Column(out::ClJob& cl, const std::string& group, const std::string& name, std::size_t cols,
          std::string_view unit, std::string_view description)
-      : id_(cl.begin_array(group, name, type(), cols, unit, description)) {}
+      : id_(cl.begin_array(group, name, out::array_type_of<T>(), cols, unit, description)) {}
 
   void push(T v) { rows_.push_back(v); }
   template <std::size_t N>
@@ -43,11 +43,6 @@ class Column {
   }
 
  private:
-  static constexpr out::ClJob::ArrayType type() {
-    if constexpr (std::is_same_v<T, double>) return out::ClJob::ArrayType::kFloat64;
-    if constexpr (std::is_same_v<T, std::int64_t>) return out::ClJob::ArrayType::kInt64;
-    return out::ClJob::ArrayType::kUInt8;
-  }
   out::ClJob::ArrayId id_;
   std::vector<T> rows_;
 };

@@ -62,7 +62,8 @@ MeshCache::MeshCache(const std::vector<JobSpec>& jobs) : jobs_(jobs), key_(jobs.
 
 std::shared_ptr<SharedMesh> MeshCache::get(std::size_t i, bool& shared) {
   const std::string& key = key_.at(i);
-  if (key.empty()) throw std::logic_error("MeshCache::get: job " + std::to_string(i) + " has no mesh");
+  if (key.empty())
+    throw std::logic_error("MeshCache::get: job " + std::to_string(i) + " has no mesh");
   auto it = meshes_.find(key);
   shared = it != meshes_.end();
   if (shared) return it->second;

@@ -93,7 +93,8 @@ void ChunkAppender::write_held(bool all) {
   for (std::size_t c = 0; c < chunks; ++c) {
     if (packed[c].empty()) fail(*ctx_, "compress a chunk of '" + name_ + "'");
     const hsize_t offset[2] = {on_disk_ + c * chunk_rows_, 0};
-    check(H5Dwrite_chunk(dataset_.get(), H5P_DEFAULT, 0, offset, packed[c].size(), packed[c].data()),
+    check(H5Dwrite_chunk(dataset_.get(), H5P_DEFAULT, 0, offset, packed[c].size(),
+                         packed[c].data()),
           *ctx_, "write a chunk of '" + name_ + "'");
   }
   // Keep the rows of a partial last chunk: a later append completes and rewrites it.

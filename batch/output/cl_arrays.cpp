@@ -36,13 +36,6 @@ TypeInfo type_info(ArrayType type) {
   throw std::invalid_argument("unknown array type");
 }
 
-template <class T>
-constexpr ArrayType type_of() {
-  if constexpr (std::is_same_v<T, double>) return ArrayType::kFloat64;
-  if constexpr (std::is_same_v<T, std::int64_t>) return ArrayType::kInt64;
-  return ArrayType::kUInt8;
-}
-
 // Creates the empty dataset /jobs/<job>/<group>/<name> (and the group when needed) with its
 // attributes, and returns its appender. Chunks hold about kArrayChunkBytes, or `rows` rows
 // when the whole array is smaller (rows == 0: not known).
@@ -90,7 +83,8 @@ void write_whole(detail::FileState& s, const std::string& group, const std::stri
                  std::span<const T> data, std::size_t cols, std::string_view unit,
                  std::string_view description) {
   const std::size_t rows = rows_of(data.size(), cols, name);
-  h5::ChunkAppender out = make_array(s, group, name, type_of<T>(), cols, unit, description, rows);
+  h5::ChunkAppender out =
+      make_array(s, group, name, array_type_of<T>(), cols, unit, description, rows);
   out.append(data.data(), rows);
   out.finish();
 }
@@ -100,7 +94,7 @@ void append_streamed(detail::FileState& s, ClJob::ArrayId id, std::span<const T>
   if (id >= s.job->arrays.size())
     throw std::invalid_argument("append_rows: no array " + std::to_string(id) + " in this job");
   detail::JobState::Streamed& a = s.job->arrays[id];
-  if (a.type != type_of<T>())
+  if (a.type != array_type_of<T>())
     throw std::invalid_argument("append_rows: array " + std::to_string(id) + " has another type");
   const std::size_t rows = rows_of(data.size(), a.width, "append_rows");
   if (s.job->broken)

@@ -23,6 +23,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 
 #include "batch/output/sha256.hpp"  // sha256_file, for JobInfo::input_sha256
@@ -184,5 +185,15 @@ class ClJob {
   std::uint64_t serial_ = 0;                 // which begin_job of file_ this job is
   std::function<void(const ClChunk&)> observer_;
 };
+
+// The ArrayType of T (double, std::int64_t or std::uint8_t).
+template <class T>
+constexpr ClJob::ArrayType array_type_of() {
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::int64_t> ||
+                std::is_same_v<T, std::uint8_t>);
+  if constexpr (std::is_same_v<T, double>) return ClJob::ArrayType::kFloat64;
+  if constexpr (std::is_same_v<T, std::int64_t>) return ClJob::ArrayType::kInt64;
+  return ClJob::ArrayType::kUInt8;
+}
 
 }  // namespace ncpath::out

@@ -159,7 +159,8 @@ TEST(ClWriterCompression, StreamedArrayHoldsTheRowsWhateverTheSplit) {
                  std::invalid_argument);  // another type
     EXPECT_THROW(job.append_rows(7, std::span<const double>(rows).subspan(0, 3)),
                  std::invalid_argument);  // no such array
-    EXPECT_THROW(job.begin_array("scan", "ids", ClJob::ArrayType::kInt64, 0), std::invalid_argument);
+    EXPECT_THROW(job.begin_array("scan", "ids", ClJob::ArrayType::kInt64, 0),
+                 std::invalid_argument);
     job.set_status("ok", "");
     job.close();
     file.close();
