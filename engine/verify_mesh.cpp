@@ -57,7 +57,6 @@ double xy_distance(const Vec2& a, const Vec2& b, const Vec2 t[3]) {
   return std::sqrt(d2);
 }
 
-
 // Better of two (value, move) pairs for "smallest value, then lowest move".
 bool closer(double a, std::uint64_t move_a, double b, std::uint64_t move_b) {
   return a < b || (a == b && move_a < move_b);
