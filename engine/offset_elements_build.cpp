@@ -172,29 +172,32 @@ void PlaneIndex::query(double v, std::vector<std::uint32_t>& out) const {
     if (long_lo[k] <= v && long_hi[k] >= v) out.push_back(long_ids[k]);
 }
 
-namespace {
-
-// A cheap interval containing element id's y reach when it has one (element_y_reach is
-// within it): the offset facet's own range, an edge's or vertex's y range grown by R.
-void y_reach_bound(const OffsetElements& el, std::uint32_t id, double& lo, double& hi) {
+void element_extent(const OffsetElements& el, std::uint32_t id, int axis, double& lo,
+                    double& hi) {
   const std::size_t nf = el.facet_count(), ne = el.edge_count();
-  double a, b;
   if (id < nf) {
     const auto& t = el.facet_tri[id];
-    a = std::min({t[0].y(), t[1].y(), t[2].y()});
-    b = std::max({t[0].y(), t[1].y(), t[2].y()});
+    lo = std::min({t[0][axis], t[1][axis], t[2][axis]});
+    hi = std::max({t[0][axis], t[1][axis], t[2][axis]});
   } else if (id < nf + ne) {
     const auto& ev = el.edge_vertices[id - nf];
-    a = std::min(el.points[ev[0]].y(), el.points[ev[1]].y()) - el.radius;
-    b = std::max(el.points[ev[0]].y(), el.points[ev[1]].y()) + el.radius;
+    lo = std::min(el.points[ev[0]][axis], el.points[ev[1]][axis]) - el.radius;
+    hi = std::max(el.points[ev[0]][axis], el.points[ev[1]][axis]) + el.radius;
   } else {
-    const double y = el.points[el.vertex_source[id - nf - ne]].y();
-    a = y - el.radius;
-    b = y + el.radius;
+    const double c = el.points[el.vertex_source[id - nf - ne]][axis];
+    lo = c - el.radius;
+    hi = c + el.radius;
   }
-  const double pad = 2 * tol::kReachPad * el.radius;  // over element_y_reach's own rounding
-  lo = a - pad;
-  hi = b + pad;
+}
+
+namespace {
+
+// element_extent, padded over element_y_reach's own rounding: contains the y reach.
+void y_reach_bound(const OffsetElements& el, std::uint32_t id, double& lo, double& hi) {
+  element_extent(el, id, 1, lo, hi);
+  const double pad = 2 * tol::kReachPad * el.radius;
+  lo -= pad;
+  hi += pad;
 }
 
 bool meets_any(double lo, double hi, std::span<const double> at) {

@@ -61,6 +61,11 @@ struct PlaneIndex {
   void query(double v, std::vector<std::uint32_t>& out) const;
 };
 
+// A cheap range containing everything of element id along axis (0 x, 1 y): the offset
+// facet's own range, an edge's or vertex's range grown by R.
+void element_extent(const OffsetElements& el, std::uint32_t id, int axis, double& lo,
+                    double& hi);
+
 // The index of el's reachable elements by their y reach. With only_at, the index answers
 // queries at those plane positions only (with the same elements, in the same order, as the
 // full index) and holds just the elements meeting them: a cheap bound (the offset facet's

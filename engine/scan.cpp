@@ -63,25 +63,12 @@ void scan_plane(const Family& fam, double v, double u0, double u1, double floor_
   fam.index.query(v, ids);
   out.pieces.clear();
   const OffsetElements& el = fam.el;
-  const std::size_t nf = el.facet_count(), ne = el.edge_count();
   const double R = el.radius;
   for (std::uint32_t id : ids) {
     // Elements whose x extent misses [u0, u1] give nothing there (a cheap test: windows of
     // pencil refinement are short).
     double lo, hi;
-    if (id < nf) {
-      const auto& t = el.facet_tri[id];
-      lo = std::min({t[0].x(), t[1].x(), t[2].x()});
-      hi = std::max({t[0].x(), t[1].x(), t[2].x()});
-    } else if (id < nf + ne) {
-      const auto& ev = el.edge_vertices[id - nf];
-      lo = std::min(el.points[ev[0]].x(), el.points[ev[1]].x()) - R;
-      hi = std::max(el.points[ev[0]].x(), el.points[ev[1]].x()) + R;
-    } else {
-      const double x = el.points[el.vertex_source[id - nf - ne]].x();
-      lo = x - R;
-      hi = x + R;
-    }
+    element_extent(el, id, 0, lo, hi);
     if (hi < u0 || lo > u1) continue;
     slice_elements(el, v, id, id + 1, out.pieces);
   }
