@@ -47,6 +47,50 @@ class Column {
   std::vector<T> rows_;
 };
 
+// The texts of one operation's segment table (SegmentTable).
+struct SegmentTexts {
+  const char* path;      // segment_path's description
+  const char* kind;      // segment_kind's enum text
+  const char* start;     // segment_start's description
+  std::size_t geometry_cols;
+  const char* geometry;  // segment_geometry's description
+};
+
+// segment_path, _kind, _element, _start, _end, _geometry in `group`, created by the
+// constructor; push() takes a segment record (path, kind, element, start, end, geometry).
+class SegmentTable {
+ public:
+  SegmentTable(out::ClJob& cl, const std::string& group, const SegmentTexts& t)
+      : path_(cl, group, "segment_path", 0, "", t.path),
+        kind_(cl, group, "segment_kind", 0, "", t.kind),
+        element_(cl, group, "segment_element", 3, "", kElementText),
+        start_(cl, group, "segment_start", 3, "mm", t.start),
+        end_(cl, group, "segment_end", 3, "mm",
+             "tool tip x, y, z where the segment ends, in cutting order"),
+        geometry_(cl, group, "segment_geometry", t.geometry_cols, "", t.geometry) {}
+
+  template <class Segment>
+  void push(const Segment& s) {
+    path_.push(s.path);
+    kind_.push(s.kind);
+    element_.push(s.element);
+    start_.push(s.start);
+    end_.push(s.end);
+    geometry_.push(s.geometry);
+  }
+  void flush(out::ClJob& cl) {
+    for (auto* c : {&path_, &element_}) c->flush(cl);
+    kind_.flush(cl);
+    for (auto* c : {&start_, &end_, &geometry_}) c->flush(cl);
+  }
+
+ private:
+  Column<std::int64_t> path_;
+  Column<std::uint8_t> kind_;
+  Column<std::int64_t> element_;
+  Column<double> start_, end_, geometry_;
+};
+
 // junction_path, _kind, _position, _b1, _b2, _element1, _element2, _angle in `group`, created
 // by the constructor; path_text and position_text describe the path and position columns.
 class JunctionTable {

@@ -36,45 +36,28 @@ class ScanRecords {
  public:
   explicit ScanRecords(out::ClJob& cl)
       : cl_(cl),
-        path_(cl, kGroup, "segment_path", 0, "",
-              "cut path of segment i: its index among the job's cut paths (path_kind 0)"),
-        kind_(cl, kGroup, "segment_kind", 0, "", kSegmentKindEnum),
-        element_(cl, kGroup, "segment_element", 3, "", kElementText),
-        start_(cl, kGroup, "segment_start", 3, "mm",
-               "tool tip x, y, z where the segment starts, in cutting order"),
-        end_(cl, kGroup, "segment_end", 3, "mm",
-             "tool tip x, y, z where the segment ends, in cutting order"),
-        geometry_(cl, kGroup, "segment_geometry", 5, "",
-                  "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
-                  "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
-                  "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle "
-                  "of the major axis from +u (upper arc); vertical: u; unused columns 0"),
+        segments_(cl, kGroup,
+                  {"cut path of segment i: its index among the job's cut paths (path_kind 0)",
+                   kSegmentKindEnum, "tool tip x, y, z where the segment starts, in cutting order",
+                   5,
+                   "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
+                   "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
+                   "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle "
+                   "of the major axis from +u (upper arc); vertical: u; unused columns 0"}),
         junctions_(cl, kGroup,
                    "cut path of junction i: its index among the job's cut paths (path_kind 0)",
                    "tool tip x, y, z at the junction") {}
 
   void append(const ScanChunk& ch) {
-    for (const ScanSegmentRecord& s : ch.segments) {
-      path_.push(s.path);
-      kind_.push(s.kind);
-      element_.push(s.element);
-      start_.push(s.start);
-      end_.push(s.end);
-      geometry_.push(s.geometry);
-    }
-    for (auto* c : {&path_, &element_}) c->flush(cl_);
-    kind_.flush(cl_);
-    for (auto* c : {&start_, &end_, &geometry_}) c->flush(cl_);
+    for (const ScanSegmentRecord& s : ch.segments) segments_.push(s);
+    segments_.flush(cl_);
     junctions_.append(ch.junctions);
   }
 
  private:
   static constexpr const char* kGroup = "scan";
   out::ClJob& cl_;
-  Column<std::int64_t> path_;
-  Column<std::uint8_t> kind_;
-  Column<std::int64_t> element_;
-  Column<double> start_, end_, geometry_;
+  SegmentTable segments_;
   JunctionTable junctions_;
 };
 

@@ -33,22 +33,18 @@ class ZLevelRecords {
  public:
   explicit ZLevelRecords(out::ClJob& cl)
       : cl_(cl),
-        path_(cl, kGroup, "segment_path", 0, "",
-              "cut path (contour) of segment i: its index among the job's cut paths "
-              "(path_kind 0)"),
-        kind_(cl, kGroup, "segment_kind", 0, "", kSegmentKindEnum),
+        segments_(cl, kGroup,
+                  {"cut path (contour) of segment i: its index among the job's cut paths "
+                   "(path_kind 0)",
+                   kSegmentKindEnum,
+                   "tool tip x, y, z where the segment starts, in cutting order (z: the level)",
+                   7,
+                   "arcs (kinds 1, 2): centre x, centre y (mm), r1, r2 (mm), angle of the axis "
+                   "from +x, t0, t1 (rad): p(t) = centre + r1 cos t axis + r2 sin t perp(axis), "
+                   "t from t0 to t1 (t1 > t0, counter-clockwise); lines: zeros"}),
         shadow_(cl, kGroup, "segment_shadow", 0, "",
                 "1: the element lies above the level there (the ball passes under it: a wall "
                 "or an overhang; the contact is on the vertical below it), else 0"),
-        element_(cl, kGroup, "segment_element", 3, "", kElementText),
-        start_(cl, kGroup, "segment_start", 3, "mm",
-               "tool tip x, y, z where the segment starts, in cutting order (z: the level)"),
-        end_(cl, kGroup, "segment_end", 3, "mm",
-             "tool tip x, y, z where the segment ends, in cutting order"),
-        geometry_(cl, kGroup, "segment_geometry", 7, "",
-                  "arcs (kinds 1, 2): centre x, centre y (mm), r1, r2 (mm), angle of the axis "
-                  "from +x, t0, t1 (rad): p(t) = centre + r1 cos t axis + r2 sin t perp(axis), "
-                  "t from t0 to t1 (t1 > t0, counter-clockwise); lines: zeros"),
         junctions_(cl, kGroup,
                    "cut path (contour) of junction i: its index among the job's cut paths",
                    "tool tip x, y, z at the junction (the start of a segment)"),
@@ -59,17 +55,11 @@ class ZLevelRecords {
 
   void append(const ZLevelChunk& ch) {
     for (const ZLevelSegmentRecord& s : ch.segments) {
-      path_.push(s.path);
-      kind_.push(s.kind);
+      segments_.push(s);
       shadow_.push(s.shadow);
-      element_.push(s.element);
-      start_.push(s.start);
-      end_.push(s.end);
-      geometry_.push(s.geometry);
     }
-    for (auto* c : {&path_, &element_}) c->flush(cl_);
-    for (auto* c : {&kind_, &shadow_}) c->flush(cl_);
-    for (auto* c : {&start_, &end_, &geometry_}) c->flush(cl_);
+    segments_.flush(cl_);
+    shadow_.flush(cl_);
     junctions_.append(ch.junctions);
     for (const double z : ch.contour_level) level_.push(z);
     for (const std::uint8_t h : ch.contour_hole) hole_.push(h);
@@ -80,10 +70,8 @@ class ZLevelRecords {
  private:
   static constexpr const char* kGroup = "zlevel";
   out::ClJob& cl_;
-  Column<std::int64_t> path_;
-  Column<std::uint8_t> kind_, shadow_;
-  Column<std::int64_t> element_;
-  Column<double> start_, end_, geometry_;
+  SegmentTable segments_;
+  Column<std::uint8_t> shadow_;
   JunctionTable junctions_;
   Column<double> level_;
   Column<std::uint8_t> hole_;
