@@ -88,6 +88,7 @@ void ChunkAppender::write_held(bool all) {
   par::for_each(chunks, 1, [&](std::size_t c) { packed[c] = pack(&held_rows_[c * chunk_bytes]); });
 
   const hsize_t rows = all ? held_ : full * chunk_rows_;
+  const auto lock = library_lock();
   const hsize_t new_dims[2] = {on_disk_ + rows, cols_};
   check(H5Dset_extent(dataset_.get(), new_dims), *ctx_, "extend dataset '" + name_ + "'");
   for (std::size_t c = 0; c < chunks; ++c) {

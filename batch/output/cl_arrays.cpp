@@ -112,16 +112,19 @@ void append_streamed(detail::FileState& s, ClJob::ArrayId id, std::span<const T>
 void ClJob::write_array(const std::string& group, const std::string& name,
                         std::span<const double> data, std::size_t cols, std::string_view unit,
                         std::string_view description) {
+  const auto lock = h5::library_lock();
   write_whole(open_file("write_array"), group, name, data, cols, unit, description);
 }
 void ClJob::write_array(const std::string& group, const std::string& name,
                         std::span<const std::int64_t> data, std::size_t cols, std::string_view unit,
                         std::string_view description) {
+  const auto lock = h5::library_lock();
   write_whole(open_file("write_array"), group, name, data, cols, unit, description);
 }
 void ClJob::write_array(const std::string& group, const std::string& name,
                         std::span<const std::uint8_t> data, std::size_t cols, std::string_view unit,
                         std::string_view description) {
+  const auto lock = h5::library_lock();
   write_whole(open_file("write_array"), group, name, data, cols, unit, description);
 }
 
@@ -129,6 +132,7 @@ ClJob::ArrayId ClJob::begin_array(const std::string& group, const std::string& n
                                   ArrayType type, std::size_t cols, std::string_view unit,
                                   std::string_view description) {
   detail::FileState& s = open_file("begin_array");
+  const auto lock = h5::library_lock();
   s.job->arrays.push_back({make_array(s, group, name, type, cols, unit, description, 0), type,
                            std::max<std::size_t>(cols, 1)});
   return s.job->arrays.size() - 1;

@@ -49,6 +49,7 @@ detail::FileState& ClJob::open_file(const char* operation) const {
 
 void ClJob::close() {
   if (!file_) return;
+  const auto lock = h5::library_lock();
   std::shared_ptr<detail::FileState> file = std::move(file_);
   if (file->job && file->job_serial == serial_) file->close_job();
 }
@@ -136,6 +137,7 @@ void ClJob::append_paths(std::span<const double> xyz, std::span<const std::uint8
 
 void ClJob::set_status(std::string_view status, std::string_view message) {
   detail::FileState& s = open_file("set_status");
+  const auto lock = h5::library_lock();
   check_status_code(status);
   check_no_nul(message, "set_status: message");
   h5::write_attribute(s.job->group.get(), "status", status, s.ctx);
@@ -144,6 +146,7 @@ void ClJob::set_status(std::string_view status, std::string_view message) {
 
 void ClJob::write_stats(std::span<const StatValue> stats) {
   detail::FileState& s = open_file("write_stats");
+  const auto lock = h5::library_lock();
   const hid_t group = s.job->stats.get();
   std::set<std::string> seen;
   for (const StatValue& st : stats) {

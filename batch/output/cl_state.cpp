@@ -36,6 +36,7 @@ namespace detail {
 
 void FileState::close_job() {
   if (!job) return;
+  const auto lock = h5::library_lock();
   std::unique_ptr<JobState> j = std::move(job);
   std::exception_ptr first;
   for (auto* a : {&j->points, &j->contact, &j->offsets, &j->kinds}) {
@@ -66,6 +67,7 @@ void FileState::close_job() {
 
 void FileState::close() {
   if (!file.valid()) return;
+  const auto lock = h5::library_lock();
   std::exception_ptr first;
   try {
     close_job();

@@ -10,6 +10,7 @@ namespace ncpath::out {
 
 ClFile::ClFile(const std::filesystem::path& path, std::string_view ncpath_version)
     : state_(std::make_shared<detail::FileState>()) {
+  const auto lock = h5::library_lock();
   // Errors are turned into exceptions carrying HDF5's message; no printing to stderr.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   check_no_nul(ncpath_version, "ncpath_version");
@@ -54,6 +55,33 @@ void ClFile::close() {
   if (state_) state_->close();
 }
 
+void ClFile::copy_job(const std::filesystem::path& from, const std::string& name) {
+  if (!state_ || !state_->file.valid())
+    throw std::logic_error("copy_job('" + name + "'): the file is closed");
+  detail::FileState& s = *state_;
+  const auto lock = h5::library_lock();
+  if (s.job)
+    throw std::logic_error("copy_job('" + name + "'): job '" + s.job->name + "' is open");
+  check_link_name(name, "job name");
+  const h5::Context src_ctx{from.string()};
+  h5::Handle src =
+      h5::own(H5Fopen(from.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), src_ctx, "open spool file");
+  const std::string src_path = "/jobs/" + name;
+  const htri_t there = H5Lexists(src.get(), "jobs", H5P_DEFAULT) > 0
+                           ? H5Lexists(src.get(), src_path.c_str(), H5P_DEFAULT)
+                           : 0;
+  if (there <= 0)
+    throw std::invalid_argument("copy_job: '" + from.string() + "' has no job '" + name + "'");
+  if (H5Lexists(s.jobs.get(), name.c_str(), H5P_DEFAULT) > 0)
+    throw std::invalid_argument("copy_job: a job named '" + name + "' already exists in '" +
+                                s.ctx.file + "'");
+  const h5::Handle lcpl = h5::utf8_link_plist(s.ctx);
+  h5::check(H5Ocopy(src.get(), src_path.c_str(), s.jobs.get(), name.c_str(), H5P_DEFAULT,
+                    lcpl.get()),
+            s.ctx, "copy job '" + name + "' from '" + from.string() + "'");
+  h5::check(H5Fflush(s.file.get(), H5F_SCOPE_LOCAL), s.ctx, "flush file");
+}
+
 const std::filesystem::path& ClFile::path() const {
   if (!state_) throw std::logic_error("ClFile::path: moved-from ClFile");
   return state_->path;
@@ -64,6 +92,7 @@ ClJob ClFile::begin_job(const std::string& name, const JobInfo& info) {
     throw std::logic_error("begin_job('" + name + "'): the file is closed");
   }
   detail::FileState& s = *state_;
+  const auto lock = h5::library_lock();
   if (s.job) {
     throw std::logic_error("begin_job('" + name + "'): job '" + s.job->name +
                            "' is still open in '" + s.ctx.file + "'");

@@ -14,8 +14,10 @@
 // the file and the operation); std::invalid_argument for bad arguments (nothing is written);
 // std::logic_error for misuse (second open job, use after close or move).
 //
-// Threads: not thread-safe, and Debian's HDF5 is not a thread-safe build: all HDF5 use of
-// the process (every ClFile and ClJob) must happen on one thread at a time.
+// Threads: one ClFile and its jobs are used by one thread at a time. Different ClFiles may
+// be written from different threads at once: every HDF5 call of ClFile and ClJob is made
+// under one process-wide lock (Debian's HDF5 is not a thread-safe build), and the writer
+// compresses outside it.
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -87,6 +89,13 @@ class ClFile {
   // (std::logic_error otherwise). The job's status is "internal_error" / "job did not finish"
   // until ClJob::set_status is called, so a job that dies half-way is never reported ok.
   ClJob begin_job(const std::string& name, const JobInfo& info);
+
+  // Copies job `name` from the CL file at `from` (written and closed by another ClFile, e.g.
+  // a job's spool file) into this file's /jobs, exactly: every dataset's stored chunks,
+  // attributes and statistics, members in the same order. The job comes after the jobs
+  // already here. std::invalid_argument when `from` has no such job or this file has one of
+  // that name; std::logic_error while a job is open here; std::runtime_error from HDF5.
+  void copy_job(const std::filesystem::path& from, const std::string& name);
 
   // Closes an open job and the file, reporting errors (std::runtime_error). Idempotent.
   void close();

@@ -23,6 +23,11 @@ void require_no_nul(std::string_view value, const char* what) {
 
 }  // namespace
 
+std::unique_lock<std::recursive_mutex> library_lock() {
+  static std::recursive_mutex mutex;
+  return std::unique_lock<std::recursive_mutex>(mutex);
+}
+
 Handle& Handle::operator=(Handle&& o) noexcept {
   if (this != &o) {
     reset();
@@ -33,7 +38,9 @@ Handle& Handle::operator=(Handle&& o) noexcept {
 }
 
 void Handle::reset() noexcept {
-  if (id_ >= 0) H5Idec_ref(id_);
+  if (id_ < 0) return;
+  const auto lock = library_lock();
+  H5Idec_ref(id_);
   id_ = H5I_INVALID_HID;
 }
 

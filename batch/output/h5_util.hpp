@@ -5,10 +5,17 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <string_view>
 
 namespace ncpath::out::h5 {
+
+// Debian's HDF5 is not a thread-safe build: every HDF5 call of the process is made holding
+// this lock, so that jobs running at the same time may each write a file of their own.
+// ClFile and ClJob take it in their members; ChunkAppender only around its HDF5 calls (it
+// compresses without it). Recursive: members call one another.
+std::unique_lock<std::recursive_mutex> library_lock();
 
 // Owns one HDF5 identifier of any kind; releases it with H5Idec_ref.
 class Handle {
