@@ -13,6 +13,7 @@
 
 #include <toml++/toml.h>
 
+#include "batch/jobs/batch_schedule.hpp"
 #include "batch/jobs/mesh_op_params.hpp"
 #include "batch/jobs/profile_op_params.hpp"
 #include "batch/jobs/raster_scan_params.hpp"
@@ -265,19 +266,28 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
   Keys k(root, "");
   std::string out;
   if (k.string("output", out)) b.output = (base_dir / out).lexically_normal();
-  double threads;
-  if (k.number("threads", threads)) {
-    if (threads >= 0 && threads == static_cast<int>(threads))
-      b.threads = static_cast<int>(threads);
+  // A whole number >= 0 into out, or the key named.
+  auto count = [&k](const char* key, int& out) {
+    double v;
+    if (!k.number(key, v)) return;
+    if (v >= 0 && v <= 1e6 && v == static_cast<int>(v))
+      out = static_cast<int>(v);
     else
-      k.fail("threads", "must be a whole number >= 0");
-  }
+      k.fail(key, "must be a whole number >= 0");
+  };
+  count("threads", b.threads);
+  count("concurrent_jobs", b.concurrent_jobs);
+  std::string memory_limit;
+  if (k.string("memory_limit", memory_limit))
+    if (std::string e = parse_byte_size(memory_limit, b.memory_limit); !e.empty())
+      k.fail("memory_limit", e);
   std::string verify;
   if (k.string("verify", verify))
     if (std::string e = parse_verify_mode(verify, b.verify); !e.empty()) k.fail("verify", e);
   const toml::node* jobs = root.get("job");
+  const std::string error = k.error;  // of the batch's own keys
   k.table("job");  // marks the key as known; its type is checked below
-  k.error.clear();
+  k.error = error;
   k.finish();
   if (!k.error.empty()) throw std::runtime_error(source_name + ": " + k.error);
   const toml::array* arr = jobs ? jobs->as_array() : nullptr;

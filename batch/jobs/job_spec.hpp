@@ -7,6 +7,8 @@
 //
 //   output  = "out/demo.h5"      # required unless given with --out
 //   threads = 0                  # 0 = all cores
+//   concurrent_jobs = 0          # jobs at the same time at most; 0 = as many as threads
+//   memory_limit = "16G"         # budget for jobs at the same time; default 3/4 of free
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
 //   operation = "raster"          # "raster", "scan", "zlevel", "pencil", "fillet", "drop",
@@ -142,6 +144,8 @@ struct JobSpec {
 struct BatchSpec {
   std::filesystem::path output;
   int threads = 0;
+  int concurrent_jobs = 0;         // 0 = as many as threads (batch_schedule.hpp)
+  std::uint64_t memory_limit = 0;  // bytes; 0 = default_memory_limit()
   VerifyMode verify = VerifyMode::kFull;  // default of the jobs that do not set `verify`
   std::vector<JobSpec> jobs;
 };

@@ -143,5 +143,25 @@ TEST(JobSpec, SyntaxErrorsNameFileLineAndColumn) {
                std::runtime_error);
 }
 
+// The batch's own keys: threads, concurrent_jobs and memory_limit, read or named when wrong.
+TEST(JobSpec, BatchKeysAreReadOrNamed) {
+  const std::string job = "[[job]]\ninput=\"a\"\ntool=\"ball:1\"\n";
+  const BatchSpec b = parse("threads = 3\nconcurrent_jobs = 2\nmemory_limit = \"1.5G\"\n" + job);
+  EXPECT_EQ(b.threads, 3);
+  EXPECT_EQ(b.concurrent_jobs, 2);
+  EXPECT_EQ(b.memory_limit, 3ull << 29);
+  EXPECT_EQ(parse(job).memory_limit, 0u);  // the default, decided when the batch runs
+  for (const char* bad : {"threads = -1\n", "threads = 1.5\n", "concurrent_jobs = -2\n",
+                          "memory_limit = \"lots\"\n", "memory_limit = 8\n"}) {
+    try {
+      parse(bad + job);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const std::runtime_error& e) {
+      const std::string key = std::string(bad).substr(0, std::string(bad).find(' '));
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ncpath::jobs
