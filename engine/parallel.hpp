@@ -91,6 +91,27 @@ void overlap(Background&& background, Foreground&& foreground) {
   group.wait();
 }
 
+// Tasks that run at the same time, such as the jobs of a batch. Each task's work is isolated:
+// a thread waiting inside one task's parallel loops helps only with that task's loops, never
+// starts another task, so a task's locks and per-thread buffers stay its own. wait() runs
+// tasks on the calling thread too. With one thread they run one after another.
+class TaskGroup {
+ public:
+  // Runs work() as a task, then after() outside the isolation (it may run() more tasks).
+  // Exceptions must not escape work() or after(): catch them there.
+  template <class Work, class After>
+  void run(Work work, After after) {
+    group_.run([work = std::move(work), after = std::move(after)] {
+      tbb::this_task_arena::isolate([&] { work(); });
+      after();
+    });
+  }
+  void wait() { group_.wait(); }
+
+ private:
+  tbb::task_group group_;
+};
+
 // Sorts [first, last) by `less`, which must be a strict total order (break ties!) so that
 // the result does not depend on the thread count.
 template <class It, class Less>

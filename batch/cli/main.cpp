@@ -13,6 +13,7 @@
 #include "batch/cli/mesh_op_cli.hpp"
 #include "batch/cli/progress_bar.hpp"
 #include "batch/cli/verify_cli.hpp"
+#include "batch/jobs/batch_schedule.hpp"
 #include "batch/jobs/job_runner.hpp"
 
 using namespace ncpath;
@@ -114,18 +115,20 @@ std::string human(double v) {
 }
 
 int run(const jobs::BatchSpec& batch, bool quiet) {
-  cli::ProgressBar bar(!quiet && cli::stderr_is_terminal());
+  cli::BatchProgress bar(!quiet && cli::stderr_is_terminal(), batch.jobs.size());
   jobs::BatchObserver obs;
-  obs.job_started = [&](std::size_t i, std::size_t n, const jobs::JobSpec& j) {
-    bar.start("[" + std::to_string(i + 1) + "/" + std::to_string(n) + "] " + j.name);
+  obs.job_started = [&](std::size_t i, std::size_t, const jobs::JobSpec& j) {
+    bar.started(i, j.name);
   };
-  obs.progress = [&](std::uint64_t done, std::uint64_t total) { bar.update(done, total); };
-  obs.job_finished = [&](const jobs::JobOutcome&) { bar.finish(); };
+  obs.progress = [&](std::size_t i, std::uint64_t done, std::uint64_t total) {
+    bar.update(i, done, total);
+  };
+  obs.job_finished = [&](std::size_t i, const jobs::JobOutcome&) { bar.finished(i); };
   std::vector<jobs::JobOutcome> outcomes;
   try {
     outcomes = jobs::run_batch(batch, obs);
   } catch (const std::exception& e) {
-    bar.finish();
+    bar.clear();
     std::fprintf(stderr, "ncpath: %s\n", e.what());
     return 2;
   }
@@ -290,6 +293,13 @@ int main(int argc, char** argv) {
   runc->add_option("jobs", batch_file, "Batch file (TOML)")->required();
   runc->add_option("--out", batch_out, "Override the batch file's output path");
   runc->add_option("--threads", batch_threads, "Override the batch file's thread count");
+  int batch_concurrent = -1;
+  std::string batch_memory;
+  runc->add_option("--concurrent-jobs", batch_concurrent,
+                   "Jobs at the same time at most, 0 = as many as threads (overrides the file)");
+  runc->add_option("--memory-limit", batch_memory,
+                   "Memory budget of the jobs running at the same time, e.g. 8G (overrides the "
+                   "file; default 3/4 of the memory available)");
   runc->add_flag("-q,--quiet", batch_quiet, "No progress bar");
 
   VerifyCli verify_cli;
@@ -378,6 +388,13 @@ int main(int argc, char** argv) {
     }
     if (!batch_out.empty()) batch.output = batch_out;
     if (batch_threads >= 0) batch.threads = batch_threads;
+    if (batch_concurrent >= 0) batch.concurrent_jobs = batch_concurrent;
+    if (!batch_memory.empty())
+      if (const std::string e = jobs::parse_byte_size(batch_memory, batch.memory_limit);
+          !e.empty()) {
+        std::fprintf(stderr, "ncpath: --memory-limit %s\n", e.c_str());
+        return 2;
+      }
     if (batch.output.empty()) {
       std::fprintf(stderr, "ncpath: %s: no output file: set 'output' or pass --out\n",
                    batch_file.c_str());

@@ -24,10 +24,10 @@ std::string eta_text(double elapsed_s, std::uint64_t done, std::uint64_t total) 
   return buf;
 }
 
-void ProgressBar::start(const std::string& label) {
+void ProgressBar::start(const std::string& label, std::chrono::steady_clock::time_point started) {
   label_ = label;
   last_ = {};
-  started_ = std::chrono::steady_clock::now();
+  started_ = started;
 }
 
 void ProgressBar::update(std::uint64_t done, std::uint64_t total) {
@@ -49,6 +49,43 @@ void ProgressBar::finish() {
   if (!enabled_) return;
   std::fprintf(stderr, "\r\033[K");
   std::fflush(stderr);
+}
+
+BatchProgress::BatchProgress(bool enabled, std::size_t jobs) : bar_(enabled), jobs_(jobs) {}
+
+void BatchProgress::show(std::size_t index) {
+  const Running& r = running_.at(index);
+  shown_ = index;
+  stale_ = false;
+  bar_.start("[" + std::to_string(done_) + "/" + std::to_string(jobs_) + " done, " +
+                 std::to_string(running_.size()) + " running] " + r.name,
+             r.started);
+}
+
+void BatchProgress::started(std::size_t index, const std::string& name) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  running_[index] = {name, std::chrono::steady_clock::now()};
+  stale_ = true;
+}
+
+void BatchProgress::update(std::size_t index, std::uint64_t done, std::uint64_t total) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  if (running_.count(index) == 0) return;
+  if (stale_ || shown_ != index) show(index);
+  bar_.update(done, total);
+}
+
+void BatchProgress::finished(std::size_t index) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  running_.erase(index);
+  ++done_;
+  stale_ = true;
+  bar_.finish();
+}
+
+void BatchProgress::clear() {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  bar_.finish();
 }
 
 }  // namespace ncpath::cli

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 
 #include "batch/io/reader_support.hpp"
 
@@ -24,6 +26,26 @@ bool is_size_consistent_binary_stl(std::string_view bytes) {
   return 84 + 50 * std::uint64_t{count} == bytes.size();
 }
 
+// facet_count_hint: the bytes it looks at, and the fewest bytes a facet takes in a text
+// file: an ASCII STL facet is seven lines with nine coordinates (about 90 bytes with one-digit
+// coordinates); an OFF triangle is a face line and half a vertex line (11 bytes at least).
+constexpr std::size_t kHintHeadBytes = 4096;
+constexpr std::uint64_t kAsciiStlBytesPerFacetMin = 80;
+constexpr std::uint64_t kOffBytesPerFacetMin = 11;
+
+// The face count of an OFF header ("OFF", comments, then "vertices faces edges"), 0 when
+// `head` does not show one. Polygons count once (a quad becomes two triangles).
+std::uint64_t off_header_faces(std::string_view head) {
+  std::string text(head);
+  for (std::size_t c = text.find('#'); c != std::string::npos; c = text.find('#', c))
+    for (; c < text.size() && text[c] != '\n'; ++c) text[c] = ' ';
+  std::istringstream in(text);
+  std::string keyword;
+  std::uint64_t vertices = 0, faces = 0;
+  if (!(in >> keyword) || keyword != "OFF" || !(in >> vertices >> faces)) return 0;
+  return faces;
+}
+
 }  // namespace
 
 MeshReadResult read_mesh(const std::filesystem::path& path) {
@@ -32,6 +54,21 @@ MeshReadResult read_mesh(const std::filesystem::path& path) {
       (detail::starts_with_keyword(bytes, "off", true) && !is_size_consistent_binary_stl(bytes)))
     return detail::parse_off(path, bytes);
   return detail::parse_stl(path, bytes);
+}
+
+std::uint64_t facet_count_hint(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) return 0;
+  std::string head(std::min<std::uintmax_t>(size, kHintHeadBytes), '\0');
+  std::ifstream in(path, std::ios::binary);
+  if (!in.read(head.data(), static_cast<std::streamsize>(head.size()))) return 0;
+  std::uint32_t count = 0;
+  if (head.size() >= 84) std::memcpy(&count, head.data() + 80, 4);
+  if (head.size() >= 84 && 84 + 50 * std::uint64_t{count} == size) return count;
+  if (has_off_extension(path) || detail::starts_with_keyword(head, "off", true))
+    if (const std::uint64_t faces = off_header_faces(head)) return faces;
+  return size / (has_off_extension(path) ? kOffBytesPerFacetMin : kAsciiStlBytesPerFacetMin);
 }
 
 MeshReadResult read_stl(const std::filesystem::path& path) {

@@ -36,6 +36,12 @@ struct MeshReadResult {
 // keyword and is not a size-consistent binary STL, reads as OFF; anything else as STL.
 MeshReadResult read_mesh(const std::filesystem::path& path);
 
+// How many facets `path` holds, at a glance (its first 4 KiB and its size, nothing parsed
+// beyond a header): exact for a size-consistent binary STL; an OFF header's face count (a
+// polygon counts once); otherwise the size divided by the fewest bytes a facet takes in a text
+// file, so on the high side. 0 when the file cannot be read. For memory estimates only.
+std::uint64_t facet_count_hint(const std::filesystem::path& path);
+
 // Binary or ASCII STL. Binary when 84 + 50 * (facet count at byte 80) == file size, even if
 // the 80-byte header starts with "solid"; ASCII when the file starts with "solid" and looks
 // like text; otherwise binary, and a count/size mismatch is reported. Binary coordinates

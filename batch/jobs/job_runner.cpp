@@ -3,13 +3,16 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 
 #include "batch/io/mesh_reader.hpp"
+#include "batch/jobs/batch_schedule.hpp"
 #include "batch/jobs/fillet_job.hpp"
 #include "batch/jobs/job_verify.hpp"
 #include "batch/jobs/offset_job.hpp"
+#include "batch/jobs/ordered_output.hpp"
 #include "batch/jobs/pencil_job.hpp"
 #include "batch/jobs/pocket3d_job.hpp"
 #include "batch/jobs/pocket_job.hpp"
@@ -44,18 +47,19 @@ std::shared_ptr<const MeshVerifier> timed_swept_index(SharedMesh& shared,
 
 // Runs the raster, scan, zlevel, pencil, fillet or drop operation on the job's (shared,
 // transformed) mesh into cl.
-void run_mesh_job(const JobSpec& job, SharedMesh& shared, bool reused, out::ClJob& cl,
+void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
                   const std::function<out::GcodeWriter*(double part_top)>& open_gcode,
-                  const BatchObserver& obs, std::vector<StatValue>& stats, JobOutcome& o,
+                  RunControl& control, std::vector<StatValue>& stats, JobOutcome& o,
                   std::unique_ptr<JobVerifier>& verifier) {
+  SharedMesh& shared = *use.mesh;
   const io::MeshReadResult& in = shared.in();
   stats.push_back({"input_format", in.stats.format, ""});
   stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
   stats.push_back({"facets_read", i64(in.stats.facets_read), ""});
   stats.push_back({"facets_skipped_degenerate_in_file", i64(in.stats.facets_degenerate), ""});
   stats.push_back({"transform_scale", shared.transform_scale(), ""});
-  stats.push_back({"read_s", reused ? 0.0 : shared.read_s(), "s"});
-  stats.push_back({"mesh_shared", std::int64_t{reused}, ""});
+  stats.push_back({"read_s", use.seconds, "s"});
+  stats.push_back({"mesh_shared", std::int64_t{use.shared}, ""});
   // The point operation is a probe: its points are answers, not moves to run.
   if (job.verify != VerifyMode::kOff && job.operation != Operation::kDrop) {
     Stopwatch index_clock;
@@ -66,8 +70,6 @@ void run_mesh_job(const JobSpec& job, SharedMesh& shared, bool reused, out::ClJo
 
   const TriangleMesh& mesh = shared.mesh();
   out::GcodeWriter* gcode = open_gcode(bounding_box(mesh).hi.z());
-  RunControl control;
-  control.progress = obs.progress;
   if (job.operation == Operation::kScan) {
     const ScanJobSummary r = run_scan_job(job, mesh, cl, gcode, control, stats);
     o.points = r.points;
@@ -145,6 +147,11 @@ void run_mesh_job(const JobSpec& job, SharedMesh& shared, bool reused, out::ClJo
 // Runs one job; fills stats and returns the outcome. Never throws for job-level problems.
 JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out::ClJob& cl,
                    const BatchObserver& obs, std::vector<StatValue>& stats) {
+  RunControl control;
+  if (obs.progress)
+    control.progress = [&obs, index](std::uint64_t done, std::uint64_t total) {
+      obs.progress(index, done, total);
+    };
   JobOutcome o;
   o.name = job.name;
   Stopwatch all;
@@ -191,9 +198,7 @@ JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out
         o.points = r.points;
         o.compute_s = r.compute_s;
       } else {
-        bool reused = false;
-        const std::shared_ptr<SharedMesh> mesh = meshes.get(index, reused);
-        run_mesh_job(job, *mesh, reused, cl, open_gcode, obs, stats, o, verifier);
+        run_mesh_job(job, meshes.get(index), cl, open_gcode, control, stats, o, verifier);
       }
       std::string verify_failure, bound_warning;
       if (verifier) {
@@ -244,6 +249,115 @@ std::string open_chain_warning(const std::vector<out::StatValue>& stats) {
   return "";
 }
 
+namespace {
+
+// The SHA-256 of each input file, computed once (under the lock: jobs rarely wait for it).
+class ShaCache {
+ public:
+  std::string get(const std::filesystem::path& input) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    auto [it, fresh] = sha_.try_emplace(input.string());
+    if (fresh) try {
+        it->second = out::sha256_file(input);
+      } catch (const std::exception&) {
+        sha_.erase(it);
+        return "";  // unreadable input: the job reports why
+      }
+    return it->second;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::string> sha_;
+};
+
+// One batch run: the jobs as tasks, started by `admission`, written by `output`.
+class BatchRun {
+ public:
+  BatchRun(const BatchSpec& batch, const BatchObserver& obs, out::ClFile& file)
+      : batch_(batch),
+        obs_(obs),
+        meshes_(batch.jobs),
+        output_(file, batch.jobs.size()),
+        admission_(estimates(batch), batch.memory_limit ? batch.memory_limit : default_memory_limit(),
+                   batch.concurrent_jobs > 0 ? static_cast<std::size_t>(batch.concurrent_jobs)
+                                             : static_cast<std::size_t>(par::max_threads())),
+        outcomes_(batch.jobs.size()) {}
+
+  // Runs every job; rethrows the first error of the output file (the batch stops starting
+  // jobs then, and lets the running ones end).
+  std::vector<JobOutcome> run() {
+    launch_ready();
+    tasks_.wait();
+    if (error_) std::rethrow_exception(error_);
+    return std::move(outcomes_);
+  }
+
+ private:
+  static std::vector<std::uint64_t> estimates(const BatchSpec& batch) {
+    std::vector<std::uint64_t> e;
+    for (const JobSpec& job : batch.jobs) e.push_back(estimate_job_bytes(job));
+    return e;
+  }
+
+  void launch_ready() {
+    std::vector<std::size_t> ready;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) ready = admission_.start_ready();
+    }
+    for (const std::size_t i : ready)
+      tasks_.run([this, i] { run_job(i); },
+                 [this, i] {
+                   {
+                     const std::lock_guard<std::mutex> lock(mutex_);
+                     admission_.finished(i);
+                   }
+                   launch_ready();
+                 });
+  }
+
+  void run_job(std::size_t i) {
+    const JobSpec& job = batch_.jobs[i];
+    if (obs_.job_started) obs_.job_started(i, batch_.jobs.size(), job);
+    out::JobInfo info;
+    info.operation = operation_name(job.operation);
+    info.input_path = job.input.string();
+    info.input_sha256 = shas_.get(job.input);
+    info.tool_json = job.error.empty() ? tool_json(job.tool) : "{}";
+    info.params_json = params_json(job);
+    JobOutcome& o = outcomes_[i];
+    try {
+      out::ClJob cl = output_.begin(i, job.name, info);
+      std::vector<StatValue> stats;
+      o = run_one(job, i, meshes_, cl, obs_, stats);
+      meshes_.done(i);
+      cl.set_status(o.status, o.message);
+      cl.write_stats(stats);
+      cl.close();
+      output_.finished(i);
+    } catch (...) {  // the output file failed: the batch stops
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+      return;
+    }
+    if (obs_.job_finished) obs_.job_finished(i, o);
+  }
+
+  const BatchSpec& batch_;
+  const BatchObserver& obs_;
+  MeshCache meshes_;  // meshes read once, shared by their jobs
+  ShaCache shas_;
+  OrderedOutput output_;
+  std::mutex mutex_;  // admission_ and error_
+  Admission admission_;
+  std::exception_ptr error_;
+  std::vector<JobOutcome> outcomes_;
+  par::TaskGroup tasks_;
+};
+
+}  // namespace
+
 std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& obs) {
   par::ThreadLimit limit(batch.threads);
   // The output's folder is created if needed (a batch file may name out/run.h5).
@@ -254,35 +368,7 @@ std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& o
       throw std::runtime_error(dir.string() + ": cannot create the output folder: " + ec.message());
   }
   out::ClFile file(batch.output, NCPATH_VERSION);
-  std::vector<JobOutcome> outcomes;
-  MeshCache meshes(batch.jobs);                  // meshes read once, shared by their jobs
-  std::map<std::string, std::string> input_sha;  // input file -> its SHA-256
-  for (std::size_t i = 0; i < batch.jobs.size(); ++i) {
-    const JobSpec& job = batch.jobs[i];
-    if (obs.job_started) obs.job_started(i, batch.jobs.size(), job);
-    out::JobInfo info;
-    info.operation = operation_name(job.operation);
-    info.input_path = job.input.string();
-    try {
-      auto [it, fresh] = input_sha.try_emplace(job.input.string());
-      if (fresh) it->second = out::sha256_file(job.input);
-      info.input_sha256 = it->second;
-    } catch (const std::exception&) {
-      input_sha.erase(job.input.string());
-      info.input_sha256 = "";  // unreadable input: the job reports why
-    }
-    info.tool_json = job.error.empty() ? tool_json(job.tool) : "{}";
-    info.params_json = params_json(job);
-    out::ClJob cl = file.begin_job(job.name, info);
-    std::vector<StatValue> stats;
-    JobOutcome o = run_one(job, i, meshes, cl, obs, stats);
-    meshes.done(i);
-    cl.set_status(o.status, o.message);
-    cl.write_stats(stats);
-    cl.close();
-    if (obs.job_finished) obs.job_finished(o);
-    outcomes.push_back(std::move(o));
-  }
+  std::vector<JobOutcome> outcomes = BatchRun(batch, obs, file).run();
   file.close();
   return outcomes;
 }

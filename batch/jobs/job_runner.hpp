@@ -1,6 +1,9 @@
 #pragma once
-// Runs a batch: every job in turn (each one parallel inside), all results into one HDF5 CL
-// file. A job that fails is recorded with its status and message and the batch goes on.
+// Runs a batch: its jobs as tasks (each one parallel inside), several at once when cores
+// would otherwise idle and their memory estimates fit the budget (batch_schedule.hpp), all
+// results into one HDF5 CL file in batch order (ordered_output.hpp): every job's datasets
+// are the same however many ran at once. A job that fails is recorded with its status and
+// message and the batch goes on.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -21,10 +24,12 @@ struct JobOutcome {
   std::uint64_t peak_rss_bytes = 0;
 };
 
+// Called from the threads that run the jobs, several at once when jobs run at the same
+// time: the functions must be thread-safe. `index` is the job's place in the batch.
 struct BatchObserver {
   std::function<void(std::size_t index, std::size_t count, const JobSpec&)> job_started;
-  std::function<void(std::uint64_t done, std::uint64_t total)> progress;
-  std::function<void(const JobOutcome&)> job_finished;
+  std::function<void(std::size_t index, std::uint64_t done, std::uint64_t total)> progress;
+  std::function<void(std::size_t index, const JobOutcome&)> job_finished;
 };
 
 // The warning an ok job carries as its message ("" when none): z-level contour chains that

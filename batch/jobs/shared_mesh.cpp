@@ -48,6 +48,7 @@ SharedMesh::SharedMesh(const JobSpec& job) {
 }
 
 std::shared_ptr<const MeshVerifier> SharedMesh::swept_index() {
+  const std::lock_guard<std::mutex> lock(swept_mutex_);
   if (!swept_) swept_ = std::make_shared<const MeshVerifier>(in_.mesh);
   return swept_;
 }
@@ -56,25 +57,51 @@ MeshCache::MeshCache(const std::vector<JobSpec>& jobs) : jobs_(jobs), key_(jobs.
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     if (!uses_mesh(jobs[i])) continue;
     key_[i] = mesh_key(jobs[i]);
-    last_use_[key_[i]] = i;
+    auto [it, fresh] = entries_.try_emplace(key_[i]);
+    if (fresh) it->second.first_user = i;
+    ++it->second.users_left;
   }
 }
 
-std::shared_ptr<SharedMesh> MeshCache::get(std::size_t i, bool& shared) {
+MeshUse MeshCache::get(std::size_t i) {
   const std::string& key = key_.at(i);
   if (key.empty())
     throw std::logic_error("MeshCache::get: job " + std::to_string(i) + " has no mesh");
-  auto it = meshes_.find(key);
-  shared = it != meshes_.end();
-  if (shared) return it->second;
-  auto mesh = std::make_shared<SharedMesh>(jobs_[i]);
-  meshes_.emplace(key, mesh);
-  return mesh;
+  Stopwatch clock;
+  MeshUse use;
+  std::unique_lock<std::mutex> lock(mutex_);
+  Entry& entry = entries_.at(key);
+  use.shared = entry.first_user != i;
+  if (entry.reading) {
+    const std::shared_future<std::shared_ptr<SharedMesh>> mesh = entry.mesh;
+    lock.unlock();
+    use.mesh = mesh.get();
+    use.seconds = clock.seconds();
+    return use;
+  }
+  std::promise<std::shared_ptr<SharedMesh>> promise;
+  entry.mesh = promise.get_future().share();
+  entry.reading = true;
+  lock.unlock();
+  try {
+    use.mesh = std::make_shared<SharedMesh>(jobs_[i]);
+    promise.set_value(use.mesh);
+  } catch (...) {
+    promise.set_exception(std::current_exception());  // for the jobs waiting now
+    lock.lock();
+    entry.reading = false;  // later jobs try again
+    throw;
+  }
+  use.seconds = use.mesh->read_s();
+  return use;
 }
 
 void MeshCache::done(std::size_t i) {
   const std::string& key = key_.at(i);
-  if (!key.empty() && last_use_[key] == i) meshes_.erase(key);
+  if (key.empty()) return;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  auto it = entries_.find(key);
+  if (it != entries_.end() && --it->second.users_left == 0) entries_.erase(it);
 }
 
 }  // namespace ncpath::jobs

@@ -3,10 +3,13 @@
 // transform share the transformed mesh, its read statistics and the file's SHA-256, and the
 // mesh's swept-tool index (engine/verify_mesh.hpp), which the job verifier and the chord
 // guard both query, built on first use. A mesh is released when the last job using it ends.
-// Jobs run one after another (run_batch); none of this is thread-safe.
+// Thread-safe: jobs running at the same time ask for their meshes from their own threads;
+// the first to ask reads a mesh while the others wait for it.
 #include <cstddef>
+#include <future>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -26,32 +29,49 @@ class SharedMesh {
   double transform_scale() const { return scale_; }
   double read_s() const { return read_s_; }  // reading and transforming (once)
 
-  // The swept-tool index of the mesh, built on the first call.
+  // The swept-tool index of the mesh, built on the first call (other callers wait for it).
   std::shared_ptr<const MeshVerifier> swept_index();
 
  private:
   io::MeshReadResult in_;
   double scale_ = 0;
   double read_s_ = 0;
+  std::mutex swept_mutex_;
   std::shared_ptr<const MeshVerifier> swept_;
+};
+
+// A job's mesh and how it got it.
+struct MeshUse {
+  std::shared_ptr<SharedMesh> mesh;
+  // An earlier job of the batch uses the same mesh: it is read once for both. Depends on
+  // the batch only, not on which job happened to ask first.
+  bool shared = false;
+  double seconds = 0;  // reading it, or waiting while another job read it
 };
 
 class MeshCache {
  public:
   explicit MeshCache(const std::vector<JobSpec>& jobs);  // jobs must outlive the cache
 
-  // The mesh of jobs[i], read now unless an earlier job of the same file and transform read
-  // it (`shared` tells which). Throws like SharedMesh's constructor; a mesh that failed to
-  // read is not kept (each job using it reports the error).
-  std::shared_ptr<SharedMesh> get(std::size_t i, bool& shared);
-  // Job i has ended: its mesh is released unless a later job uses it.
+  // The mesh of jobs[i], read now unless another job of the same file and transform read it
+  // or is reading it (then this waits). Throws like SharedMesh's constructor; a mesh that
+  // failed to read is not kept (a later job using it reads it again and reports the error).
+  MeshUse get(std::size_t i);
+  // Job i has ended: its mesh is released when no other job left uses it. Call it once for
+  // every job, whatever its outcome.
   void done(std::size_t i);
 
  private:
+  struct Entry {
+    std::size_t first_user = 0;
+    std::size_t users_left = 0;
+    bool reading = false;  // a job is reading it or has read it: `mesh` is valid
+    std::shared_future<std::shared_ptr<SharedMesh>> mesh;
+  };
   const std::vector<JobSpec>& jobs_;
-  std::vector<std::string> key_;                // per job; empty for jobs without a mesh
-  std::map<std::string, std::size_t> last_use_;  // key -> last job index using it
-  std::map<std::string, std::shared_ptr<SharedMesh>> meshes_;
+  std::vector<std::string> key_;  // per job; empty for jobs without a mesh
+  std::mutex mutex_;
+  std::map<std::string, Entry> entries_;
 };
 
 }  // namespace ncpath::jobs

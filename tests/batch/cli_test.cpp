@@ -267,5 +267,65 @@ TEST(Cli, HelpDocumentsEveryOption) {
     EXPECT_NE(o.output.find(s), std::string::npos) << s;
 }
 
+// Jobs run at the same time write what they write one at a time: every dataset, attribute
+// and statistic but the timings, in batch order, a failing job failing alone, no spool file
+// left. Also under a memory budget so small that every job runs alone.
+TEST(Cli, ConcurrentJobsWriteWhatJobsOneAtATimeWrite) {
+  const auto dir = fixture_dir();
+  const std::string plate =
+      (std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/pockets/plate.toml").string();
+  std::ofstream(dir / "batch.toml")
+      << "output = \"x.h5\"\nthreads = 2\n"
+      << "[[job]]\nname = \"raster\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+      << "params = { interval = 0.25, step = 0.05 }\n"
+      << "[[job]]\nname = \"zlevel\"\noperation = \"zlevel\"\ninput = \"part.stl\"\n"
+      << "tool = \"ball:4\"\nparams = { step_down = 0.5 }\n"
+      << "[[job]]\nname = \"missing\"\ninput = \"none.stl\"\ntool = \"ball:4\"\n"
+      << "[[job]]\nname = \"scan\"\noperation = \"scan\"\ninput = \"part.stl\"\n"
+      << "tool = \"ball:5\"\ntransform = { scale = 1.5 }\nparams = { interval = 1 }\n"
+      << "[[job]]\nname = \"pocket\"\noperation = \"pocket\"\ninput = \"" << plate
+      << "\"\ntool = \"flat:8\"\nparams = { stepover = \"40%\", depth = 10, stepdown = 2.5 }\n"
+      << "[[job]]\nname = \"pencil\"\noperation = \"pencil\"\ninput = \"part.stl\"\n"
+      << "tool = \"ball:6\"\nparams = { interval = 0.5 }\n"
+      << "[[job]]\nname = \"raster2\"\ninput = \"part.stl\"\ntool = \"flat:3\"\n"
+      << "transform = { scale = 1.5 }\nparams = { interval = 0.5, step = 0.25 }\n";
+  const char* runs[][2] = {{"one.h5", "--concurrent-jobs 1"},
+                           {"many.h5", "--concurrent-jobs 2"},
+                           {"tight.h5", "--concurrent-jobs 2 --memory-limit 1"}};
+  for (const auto& run : runs) {
+    const CmdResult r = ncpath("run " + (dir / "batch.toml").string() + " --quiet --out " +
+                               (dir / run[0]).string() + " " + run[1]);
+    EXPECT_EQ(r.exit_code, 1) << run[1] << ": " << r.output;  // the missing input fails
+    EXPECT_NE(r.output.find("7 job(s), 6 ok, 1 failed"), std::string::npos) << r.output;
+  }
+  auto timing = [](const std::string& name) {
+    return name.ends_with("_s") || name.ends_with("/peak_rss_bytes");
+  };
+  EXPECT_TRUE(h5::same_content(dir / "one.h5", dir / "many.h5", timing));
+  EXPECT_TRUE(h5::same_content(dir / "one.h5", dir / "tight.h5", timing));
+  h5::Id f = h5::open_read(dir / "many.h5");
+  h5::Id missing(H5Gopen2(f, "/jobs/missing", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(missing, "status"), "invalid_input");
+  h5::Id pencil(H5Gopen2(f, "/jobs/pencil", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(pencil, "status"), "ok");
+  EXPECT_GT(h5::read_all<double>(f, "/jobs/raster2/cl/points", H5T_NATIVE_DOUBLE).size(), 30u);
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".spool-"), std::string::npos) << entry.path();
+}
+
+TEST(Cli, BadMemoryLimitIsNamed) {
+  const auto dir = fixture_dir();
+  std::ofstream(dir / "b.toml") << "output = \"x.h5\"\nmemory_limit = \"lots\"\n[[job]]\n"
+                                << "input = \"part.stl\"\ntool = \"ball:4\"\n";
+  CmdResult r = ncpath("run " + (dir / "b.toml").string() + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("memory_limit"), std::string::npos) << r.output;
+  std::ofstream(dir / "c.toml") << "output = \"x.h5\"\n[[job]]\n"
+                                << "input = \"part.stl\"\ntool = \"ball:4\"\n";
+  r = ncpath("run " + (dir / "c.toml").string() + " --quiet --memory-limit 8X");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--memory-limit"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace ncpath

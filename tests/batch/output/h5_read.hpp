@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -113,6 +114,89 @@ inline ::testing::AssertionResult same_bytes(const std::filesystem::path& a,
   while (i < x.size() && i < y.size() && x[i] == y[i]) ++i;
   return ::testing::AssertionFailure() << a << " (" << x.size() << " bytes) and " << b << " ("
                                        << y.size() << " bytes) differ from byte " << i;
+}
+
+// The value of a dataset or attribute as comparable bytes: strings as their text, anything
+// else as stored (its file type's bytes).
+inline std::string value_bytes(hid_t obj, bool attribute) {
+  Id type(attribute ? H5Aget_type(obj) : H5Dget_type(obj));
+  Id space(attribute ? H5Aget_space(obj) : H5Dget_space(obj));
+  const hssize_t n = H5Sget_simple_extent_npoints(space);
+  if (H5Tis_variable_str(type) > 0) {
+    std::vector<char*> ptrs(static_cast<std::size_t>(n), nullptr);
+    const herr_t rc = attribute ? H5Aread(obj, type, ptrs.data())
+                                : H5Dread(obj, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data());
+    if (rc < 0) throw std::runtime_error("read strings");
+    std::string out;
+    for (char* p : ptrs) out += std::string(p ? p : "") + '\0';
+    H5Dvlen_reclaim(type, space, H5P_DEFAULT, ptrs.data());
+    return out;
+  }
+  std::string out(static_cast<std::size_t>(n) * H5Tget_size(type), '\0');
+  const herr_t rc = out.empty() ? 0
+                    : attribute ? H5Aread(obj, type, out.data())
+                                : H5Dread(obj, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data());
+  if (rc < 0) throw std::runtime_error("read values");
+  return out;
+}
+
+// Every object of a file in creation order ("/jobs/a", "/jobs/a/cl", ...), with its
+// attributes' names and values and, for datasets, shape and values, one line per item.
+inline std::vector<std::string> content_lines(const std::filesystem::path& path) {
+  Id file = open_read(path);
+  std::vector<std::string> lines;
+  struct Walk {
+    static herr_t attr(hid_t obj, const char* name, const H5A_info_t*, void* data) {
+      Id a(H5Aopen(obj, name, H5P_DEFAULT));
+      static_cast<std::vector<std::string>*>(data)->push_back(std::string("  @") + name + "=" +
+                                                              value_bytes(a, true));
+      return 0;
+    }
+    static herr_t object(hid_t root, const char* name, const H5O_info_t* info, void* data) {
+      auto& out = *static_cast<std::vector<std::string>*>(data);
+      out.push_back(name);
+      Id obj(H5Oopen(root, name, H5P_DEFAULT));
+      hsize_t idx = 0;
+      H5Aiterate2(obj, H5_INDEX_CRT_ORDER, H5_ITER_INC, &idx, attr, data);
+      if (info->type == H5O_TYPE_DATASET) {
+        std::string dims;
+        for (const hsize_t d : dims_of(obj)) dims += std::to_string(d) + " ";
+        out.push_back("  shape " + dims);
+        out.push_back("  values " + value_bytes(obj, false));
+      }
+      return 0;
+    }
+  };
+  if (H5Ovisit(file, H5_INDEX_CRT_ORDER, H5_ITER_INC, Walk::object, &lines) < 0)
+    throw std::runtime_error("visit " + path.string());
+  return lines;
+}
+
+// The two files hold the same objects in the same order with the same attributes and
+// values, except the objects whose path `skip` accepts (for example timings).
+template <class Skip>
+::testing::AssertionResult same_content(const std::filesystem::path& a,
+                                        const std::filesystem::path& b, Skip skip) {
+  auto keep = [&](const std::vector<std::string>& lines) {
+    std::vector<std::string> out;
+    bool skipping = false;
+    for (const std::string& l : lines) {
+      if (l.rfind("  ", 0) != 0) skipping = skip(l);
+      if (!skipping) out.push_back(l);
+    }
+    return out;
+  };
+  const std::vector<std::string> x = keep(content_lines(a)), y = keep(content_lines(b));
+  if (x.size() < 2) return ::testing::AssertionFailure() << a << " holds nothing";
+  for (std::size_t i = 0; i < std::min(x.size(), y.size()); ++i)
+    if (x[i] != y[i])
+      return ::testing::AssertionFailure()
+             << a << " and " << b << " differ at item " << i << ": '" << x[i].substr(0, 80)
+             << "' against '" << y[i].substr(0, 80) << "'";
+  if (x.size() != y.size())
+    return ::testing::AssertionFailure() << a << " has " << x.size() << " items, " << b
+                                         << " has " << y.size();
+  return ::testing::AssertionSuccess();
 }
 
 // A clean per-test output directory under the build tree.
