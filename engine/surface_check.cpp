@@ -17,6 +17,16 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
   return d;
 }
 
+bool reachable(const SurfaceProbe& part, const Vec3& q) {
+  if (q.z() < part.floor_z - kReachSlack) return false;
+  if (part.index.query(q.x(), q.y()).tip_z - q.z() <= kSurfaceSlack) return true;
+  const Vec3 centre = q + Vec3(0, 0, part.radius);
+  const double r = part.radius - kReachSlack;
+  if (part.distance.closest(centre, part.radius).distance <= r) return false;  // in the part
+  const double rise = part.top_z - q.z() + kReachSlack;
+  return !part.distance.march(centre, Vec3::UnitZ(), r, rise);
+}
+
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
                        double radius, double max_lift, double spacing, std::vector<Vec3>& pts,
                        int rounds, std::vector<bool>* touching) {

@@ -22,7 +22,28 @@ inline constexpr double kSurfaceSlack = 1e-9;
 // top although the tool there merely touches the wall (or, in a corner, both walls). A real
 // gouge is an open set, so the smallest deficit over q and its eight neighbours 1e-6 mm away
 // tells them apart; gouges narrower than that are not seen.
+// A measure for refinement and lift sizes, not a safety check: the paths are made safe by
+// lift_swept and checked by the job's verifier.
 double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
+
+// The part as the ball-end clean-up operations see it: its drop-cutter (the ball of `radius`),
+// its exact distance (the swept ball), the lowest tip and the part's top.
+struct SurfaceProbe {
+  const DropIndex& index;
+  const MeshDistance& distance;
+  double radius;   // mm, the index's ball
+  double floor_z;  // mm: the tool touches nothing lower
+  double top_z;    // mm, the part's highest point
+};
+
+// Whether the ball with its tip at q can be there, reached from above (exact): q is not below
+// floor_z, the ball at q is in the part by at most kReachSlack, and the ball swept straight
+// up from q to the part's top (radius - kReachSlack, MeshDistance::march) touches nothing,
+// so the shank's space is free. One drop-cutter query when q is on or above the CL surface.
+// Unlike surface_deficit's neighbours, it tells a ball touching a steep wall (reachable)
+// from one 1.8e-4 mm under a near-vertical wall's CL surface (not), which the fillet-cut of
+// anchor_dense had taken for reachable.
+bool reachable(const SurfaceProbe& part, const Vec3& q);
 
 // The exact check: the ball (radius R) swept along every chord of the tool-tip polyline, by
 // MeshDistance::march with radius R - kSweepSlack, so a chord is accepted only if its ball
@@ -37,6 +58,11 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
 // raised; `touching` (when given) gets one flag per chord: still touching at the end
 // (callers must not cut such a chord).
 inline constexpr double kSweepSlack = 1e-7;
+// reachable(): how far a reachable ball below the drop-cutter height may be in the part:
+// rounding only. Beside a wall of slope a, a ball in the part by p is p / cos(a) below the CL
+// surface, and the verifier measures that vertical depth (anchor_dense: 1.5e-7 mm in the
+// part, 1.8e-4 mm deep).
+inline constexpr double kReachSlack = kSurfaceSlack;
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
                        double radius, double max_lift, double spacing,
                        std::vector<Vec3>& points, int rounds = 24,

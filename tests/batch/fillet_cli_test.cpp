@@ -239,6 +239,25 @@ params = { reference = "ball:2.5", interval = 0.5, step_down = 0.3, stepover = 0
     EXPECT_EQ(st[s], (scan_cli::Stats{b, "cleanup"}[s])) << s;
 }
 
+// A real CAD part with near-vertical walls (anchor_dense from libcgal-demo, fit to 100 mm),
+// ball 3 after ball 8: every move passes the job's verifier. Before the reachability check
+// swept the ball up from each pass point, a point 1.8e-4 mm under a steep wall's CL surface
+// was taken for one touching the wall and the job failed verification (move 8542).
+TEST(FilletCli, SteepWallsOfARealPartPassTheVerifier) {
+  const auto dir = scan_cli::fixture_dir("fillet_anchor");
+  const std::string mesh =
+      (std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/cache/meshes/anchor_dense.off").string();
+  const CmdResult r = ncpath("fillet --mesh " + mesh + " --tool ball:3 --reference ball:8 "
+                             "--interval 1 --step-down 0 --fit-xy 100 --quiet --out " +
+                             (dir / "a.h5").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(dir / "a.h5");
+  ASSERT_NO_FATAL_FAILURE(expect_job_ok(f, "fillet", "fillet"));
+  const scan_cli::Stats st{f, "fillet"};
+  EXPECT_GT(st["passes"], 100);
+  EXPECT_EQ(st["verify_max_gouge"], 0.0);
+}
+
 TEST(FilletCli, ProblemsAreNamed) {
   const auto dir = scan_cli::fixture_dir("fillet_problems");
   scan_cli::write_off(dir / "groove.off", scan_cli::groove(false));
