@@ -92,7 +92,7 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
   const FacetTable table = build_facet_table(mesh);
   const DropIndex index(table, grown);
   const double floor_z = p.pencil.floor_z.value_or(bounding_box(mesh).lo.z());
-  const SurfaceProbe part{index, distance, rc, floor_z, bounding_box(mesh).hi.z()};
+  const PartProbe part{index, distance, rc, floor_z, bounding_box(mesh).hi.z()};
   const double step =
       p.stepover > 0 ? p.stepover : 2 * std::sqrt(std::max(0.0, 2 * r * p.scallop - p.scallop * p.scallop));
   const double spacing = std::max(0.02, 0.1 * p.pencil.interval);

@@ -244,7 +244,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const DropIndex index(table, cutter);
   st.index_s += index_clock.seconds();
   auto deficit_at = [&](const Vec3& q) { return surface_deficit(index, floor_z, q); };
-  const SurfaceProbe part{index, distance, cutter.radius, floor_z, bounding_box(mesh).hi.z()};
+  const PartProbe part{index, distance, cutter.radius, floor_z, bounding_box(mesh).hi.z()};
   auto closest = [&](const ElementRef& e) -> std::function<Vec3(const Vec3&)> {
     const auto& V = mesh.vertices;
     if (e.kind == 0) {

@@ -17,7 +17,7 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
   return d;
 }
 
-bool reachable(const SurfaceProbe& part, const Vec3& q) {
+bool reachable(const PartProbe& part, const Vec3& q) {
   if (q.z() < part.floor_z - kReachSlack) return false;
   if (part.index.query(q.x(), q.y()).tip_z - q.z() <= kSurfaceSlack) return true;
   const Vec3 centre = q + Vec3(0, 0, part.radius);

@@ -28,7 +28,7 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q);
 
 // The part as the ball-end clean-up operations see it: its drop-cutter (the ball of `radius`),
 // its exact distance (the swept ball), the lowest tip and the part's top.
-struct SurfaceProbe {
+struct PartProbe {
   const DropIndex& index;
   const MeshDistance& distance;
   double radius;   // mm, the index's ball
@@ -43,7 +43,7 @@ struct SurfaceProbe {
 // Unlike surface_deficit's neighbours, it tells a ball touching a steep wall (reachable)
 // from one 1.8e-4 mm under a near-vertical wall's CL surface (not), which the fillet-cut of
 // anchor_dense had taken for reachable.
-bool reachable(const SurfaceProbe& part, const Vec3& q);
+bool reachable(const PartProbe& part, const Vec3& q);
 
 // The exact check: the ball (radius R) swept along every chord of the tool-tip polyline, by
 // MeshDistance::march with radius R - kSweepSlack, so a chord is accepted only if its ball

@@ -35,7 +35,7 @@ struct Probe {
   FacetTable table;
   DropIndex index;
   MeshDistance distance;
-  SurfaceProbe part;
+  PartProbe part;
 };
 
 // The tip of the ball touching the wall with normal n at height z of the wall (y = 0).
@@ -78,7 +78,7 @@ TEST(Reachable, OnAFloorNotBelowIt) {
   const Probe p(floor);
   EXPECT_TRUE(reachable(p.part, Vec3(1, 2, 0)));
   EXPECT_FALSE(reachable(p.part, Vec3(1, 2, -1e-6)));
-  SurfaceProbe high = p.part;
+  PartProbe high = p.part;
   high.floor_z = 1;  // the tool touches nothing below z = 1
   EXPECT_FALSE(reachable(high, Vec3(1, 2, 0.5)));
 }
