@@ -2,9 +2,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <span>
 #include <vector>
 
 #include "batch/io/reader_support.hpp"
+#include "engine/parallel.hpp"
 #include "kernels/mesh/polygon.hpp"
 
 namespace ncpath::io::detail {
@@ -22,10 +25,46 @@ std::string nth(std::uint64_t k) {  // 1 -> "1st", 2 -> "2nd", 12 -> "12th"
   return std::to_string(k) + suffix;
 }
 
+// The body of an OFF file in pieces of this many bytes (whole lines), parsed in parallel.
+constexpr std::size_t kOffPieceBytes = std::size_t(8) << 20;
+
 class OffParser {
  public:
+  // The whole file (parse, or parse_header then nothing else).
   OffParser(const std::filesystem::path& path, std::string_view bytes)
-      : path_(path), scan_(bytes), builder_("off"), size_(bytes.size()) {}
+      : path_(path), scan_(bytes), builder_("off"), size_(bytes.size()),
+        vertices_(&builder_.result().mesh.vertices) {}
+  // A piece of the body (whole lines) of a file with these counts; its vertices are stored in
+  // `vertices` (already sized to vertex_count), its facets in result().
+  OffParser(const std::filesystem::path& path, std::string_view piece, std::uint64_t vertex_count,
+            std::uint64_t face_count, std::vector<Vec3>& vertices)
+      : path_(path), scan_(piece), builder_("off"), size_(piece.size()),
+        vertex_count_(vertex_count), face_count_(face_count), vertices_(&vertices),
+        piece_(true) {}
+
+  // Reads the header; returns the offset of the body.
+  std::size_t parse_header_only() {
+    parse_header();
+    return scan_.offset();
+  }
+  std::uint64_t vertex_count() const { return vertex_count_; }
+  std::uint64_t face_count() const { return face_count_; }
+
+  // A piece: its content lines are the file's first, first + 1, ... after the header (the
+  // vertices, then the faces); parses those that are vertices, or those that are faces.
+  void parse_piece_vertices(std::uint64_t first, std::uint64_t lines) {
+    for (std::uint64_t g = first; g < first + lines && g < vertex_count_; ++g) parse_vertex(g);
+  }
+  void parse_piece_faces(std::uint64_t first, std::uint64_t lines) {
+    std::string_view skipped;
+    for (std::uint64_t g = first; g < first + lines; ++g) {
+      if (g < vertex_count_)
+        scan_.next_content_line(skipped);
+      else
+        parse_face(g - vertex_count_);
+    }
+  }
+  MeshReadResult& result() { return builder_.result(); }
 
   MeshReadResult parse() {
     parse_header();
@@ -120,7 +159,10 @@ class OffParser {
                        quote(tokens.next()) +
                        " after x y z); coloured or homogeneous OFF "
                        "variants are not supported");
-    builder_.result().mesh.vertices.push_back(p);
+    if (piece_)
+      (*vertices_)[i] = p;
+    else
+      vertices_->push_back(p);
   }
 
   void parse_face(std::uint64_t f) {
@@ -153,14 +195,14 @@ class OffParser {
     }
     // Anything left on the line is a face colour: ignored.
     if (k == 3) {
-      builder_.add_indexed_facet(face_[0], face_[1], face_[2]);
+      builder_.add_indexed_facet(face_[0], face_[1], face_[2], *vertices_);
       return;
     }
     add_polygon(f);
   }
 
   void add_polygon(std::uint64_t f) {
-    const auto& vertices = builder_.result().mesh.vertices;
+    const auto& vertices = *vertices_;
     points_.clear();
     for (std::uint32_t index : face_) points_.push_back(vertices[index]);
     const PolygonTriangulation tri = triangulate_convex_polygon(points_);
@@ -187,7 +229,7 @@ class OffParser {
     }
     ++stats.polygons_triangulated;
     for (const auto& t : tri.triangles)
-      builder_.add_indexed_facet(face_[t[0]], face_[t[1]], face_[t[2]]);
+      builder_.add_indexed_facet(face_[t[0]], face_[t[1]], face_[t[2]], vertices);
   }
 
   const std::filesystem::path& path_;
@@ -196,14 +238,109 @@ class OffParser {
   std::uint64_t size_;
   std::uint64_t vertex_count_ = 0;
   std::uint64_t face_count_ = 0;
+  std::vector<Vec3>* vertices_;  // the builder's, or (a piece) the whole file's
+  bool piece_ = false;
   std::vector<std::uint32_t> face_;  // scratch: the indices of the current face
   std::vector<Vec3> points_;         // scratch: its vertices
 };
 
+// Cuts `body` after the newline at or past every multiple of piece_bytes: piece k is
+// [cut[k], cut[k + 1]).
+std::vector<std::size_t> line_cuts(std::string_view body, std::size_t piece_bytes) {
+  std::vector<std::size_t> cut = {0};
+  for (std::size_t at = piece_bytes; at < body.size(); at = cut.back() + piece_bytes) {
+    const std::size_t nl = body.find('\n', at);
+    if (nl == std::string_view::npos || nl + 1 >= body.size()) break;
+    cut.push_back(nl + 1);
+  }
+  cut.push_back(body.size());
+  return cut;
+}
+
+// The pieces' facets in order over the shared vertices; nullopt when a piece failed or the
+// file has no facets left (the whole-file parser then gives its message).
+std::optional<MeshReadResult> join_off(std::vector<Vec3>& vertices,
+                                       std::vector<std::optional<MeshReadResult>>& parts,
+                                       std::uint64_t faces) {
+  MeshReadResult out;
+  out.stats.format = "off";
+  std::size_t total = 0;
+  for (const auto& p : parts) {
+    if (!p) return std::nullopt;
+    total += p->mesh.facets.size();
+  }
+  if (total == 0) return std::nullopt;
+  out.mesh.facets.reserve(total);
+  for (const auto& p : parts) {
+    out.mesh.facets.insert(out.mesh.facets.end(), p->mesh.facets.begin(), p->mesh.facets.end());
+    out.stats.facets_degenerate += p->stats.facets_degenerate;
+    out.stats.polygons_triangulated += p->stats.polygons_triangulated;
+  }
+  out.mesh.vertices = std::move(vertices);
+  out.stats.facets_in_file = faces;
+  out.stats.facets_read = total;
+  return out;
+}
+
 }  // namespace
 
 MeshReadResult parse_off(const std::filesystem::path& path, std::string_view bytes) {
-  return OffParser(path, bytes).parse();
+  return parse_off_pieces(path, bytes, kOffPieceBytes);
+}
+
+MeshReadResult parse_off_pieces(const std::filesystem::path& path, std::string_view bytes,
+                                std::size_t piece_bytes) {
+  std::size_t body_at = 0;
+  std::uint64_t nv = 0, nf = 0;
+  try {
+    OffParser head(path, bytes);
+    body_at = head.parse_header_only();
+    nv = head.vertex_count();
+    nf = head.face_count();
+  } catch (const ReadError&) {
+    return OffParser(path, bytes).parse();  // its message
+  }
+  const std::string_view body = bytes.substr(body_at);
+  const std::vector<std::size_t> cut = line_cuts(body, piece_bytes);
+  const std::size_t pieces = cut.size() - 1;
+  // One piece, or more vertices than the body has lines for: the whole-file parser.
+  if (pieces == 1 || nv > body.size() / 5 + 1) return OffParser(path, bytes).parse();
+  auto piece = [&](std::size_t k) { return body.substr(cut[k], cut[k + 1] - cut[k]); };
+  std::vector<std::uint64_t> lines(pieces, 0), first(pieces + 1, 0);
+  par::for_each(pieces, 1, [&](std::size_t k) {
+    TextScanner scan(piece(k));
+    std::string_view line;
+    while (scan.next_content_line(line)) ++lines[k];
+  });
+  par::exclusive_scan(std::span<const std::uint64_t>(lines), std::span<std::uint64_t>(first));
+  if (first[pieces] != nv + nf) return OffParser(path, bytes).parse();  // counts disagree
+  std::vector<Vec3> vertices(nv);
+  std::vector<char> ok(pieces, 1);
+  par::for_each(pieces, 1, [&](std::size_t k) {
+    try {
+      OffParser(path, piece(k), nv, nf, vertices).parse_piece_vertices(first[k], lines[k]);
+    } catch (const ReadError&) {
+      ok[k] = 0;
+    }
+  });
+  std::vector<std::optional<MeshReadResult>> parts(pieces);
+  if (std::find(ok.begin(), ok.end(), 0) == ok.end())
+    par::for_each(pieces, 1, [&](std::size_t k) {
+      if (first[k] + lines[k] <= nv) {  // vertices only
+        parts[k].emplace();
+        return;
+      }
+      try {
+        OffParser p(path, piece(k), nv, nf, vertices);
+        const std::uint64_t face_lines = first[k] + lines[k] - std::max(first[k], nv);
+        p.result().mesh.facets.reserve(face_lines + face_lines / 2);  // quads: two each
+        p.parse_piece_faces(first[k], lines[k]);
+        parts[k] = std::move(p.result());
+      } catch (const ReadError&) {
+      }
+    });
+  std::optional<MeshReadResult> out = join_off(vertices, parts, nf);
+  return out ? std::move(*out) : OffParser(path, bytes).parse();
 }
 
 }  // namespace ncpath::io::detail

@@ -217,7 +217,11 @@ void MeshBuilder::add_soup_facet(const Vec3& a, const Vec3& b, const Vec3& c) {
 }
 
 void MeshBuilder::add_indexed_facet(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-  const auto& v = result_.mesh.vertices;
+  add_indexed_facet(a, b, c, result_.mesh.vertices);
+}
+
+void MeshBuilder::add_indexed_facet(std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                                    const std::vector<Vec3>& v) {
   if (is_degenerate_facet(v[a], v[b], v[c])) {
     ++result_.stats.facets_degenerate;
     return;

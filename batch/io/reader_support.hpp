@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "batch/io/mesh_reader.hpp"
 #include "kernels/geom/vec.hpp"
@@ -21,6 +22,10 @@ MeshReadResult parse_off(const std::filesystem::path& path, std::string_view byt
 // the same result as one piece, and on any error the whole-file parser's exact message.
 MeshReadResult parse_ascii_stl(const std::filesystem::path& path, std::string_view bytes,
                                std::size_t piece_bytes);
+// An OFF file whose body is cut into pieces of about piece_bytes (whole lines), parsed in
+// parallel: the same result as parse_off, and on any error parse_off's exact message.
+MeshReadResult parse_off_pieces(const std::filesystem::path& path, std::string_view bytes,
+                                std::size_t piece_bytes);
 
 // True when the text starts (after whitespace, a UTF-8 byte order mark and, if
 // allow_comments, '#' comment lines) with `keyword` followed by whitespace or the end.
@@ -54,6 +59,8 @@ class TextScanner {
   bool next_content_line(std::string_view& line);
   // Line of the last token or content line returned; at the end, the text's last line.
   std::uint64_t line() const { return line_; }
+  // Bytes of the text consumed so far.
+  std::size_t offset() const { return static_cast<std::size_t>(p_ - begin_); }
 
  private:
   void at_end();
@@ -86,6 +93,9 @@ class MeshBuilder {
   void add_soup_facet(const Vec3& a, const Vec3& b, const Vec3& c);
   // A facet over existing vertices; skipped (and counted) when degenerate.
   void add_indexed_facet(std::uint32_t a, std::uint32_t b, std::uint32_t c);
+  // The same over the vertices of another array (a piece of a file parsed in parallel).
+  void add_indexed_facet(std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                         const std::vector<Vec3>& vertices);
   // Checks that facets are left, fills facets_read and hands the result over.
   MeshReadResult finish(const std::filesystem::path& path);
 
