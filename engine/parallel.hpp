@@ -6,9 +6,11 @@
 #include <cstddef>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <span>
 
 #include <tbb/blocked_range.h>
+#include <tbb/collaborative_call_once.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -110,6 +112,24 @@ class TaskGroup {
 
  private:
   tbb::task_group group_;
+};
+
+// A value computed once for threads (tasks) that may ask for it at the same time, e.g. jobs
+// of a batch sharing a mesh: the first caller runs make(); the others help with its parallel
+// loops (oneTBB collaborative_call_once) instead of blocking threads the computation could
+// use. When make() throws, that caller gets the exception and the next caller tries again.
+template <class T>
+class Once {
+ public:
+  template <class Make>
+  const T& get(Make&& make) {
+    tbb::collaborative_call_once(flag_, [&] { value_.emplace(make()); });
+    return *value_;
+  }
+
+ private:
+  tbb::collaborative_once_flag flag_;
+  std::optional<T> value_;
 };
 
 // Sorts [first, last) by `less`, which must be a strict total order (break ties!) so that

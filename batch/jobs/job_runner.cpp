@@ -52,6 +52,14 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
                   RunControl& control, std::vector<StatValue>& stats, JobOutcome& o,
                   std::unique_ptr<JobVerifier>& verifier) {
   SharedMesh& shared = *use.mesh;
+  // A scan job sharing its elements frees them when it is the group's last, however it ends.
+  struct Release {
+    SharedMesh* mesh;
+    double radius;
+    ~Release() {
+      if (mesh) mesh->release_scan_elements(radius);
+    }
+  } release{use.share_scan_elements ? &shared : nullptr, job.tool.radius};
   const io::MeshReadResult& in = shared.in();
   stats.push_back({"input_format", in.stats.format, ""});
   stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
@@ -71,7 +79,8 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
   const TriangleMesh& mesh = shared.mesh();
   out::GcodeWriter* gcode = open_gcode(bounding_box(mesh).hi.z());
   if (job.operation == Operation::kScan) {
-    const ScanJobSummary r = run_scan_job(job, mesh, cl, gcode, control, stats);
+    const ScanJobSummary r =
+        run_scan_job(job, mesh, cl, gcode, control, stats, release.mesh, use.scan_elements_shared);
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
@@ -279,7 +288,8 @@ class BatchRun {
         obs_(obs),
         meshes_(batch.jobs),
         output_(file, batch.jobs.size()),
-        admission_(estimates(batch), batch.memory_limit ? batch.memory_limit : default_memory_limit(),
+        admission_(estimates(batch),
+                   batch.memory_limit ? batch.memory_limit : default_memory_limit(),
                    batch.concurrent_jobs > 0 ? static_cast<std::size_t>(batch.concurrent_jobs)
                                              : static_cast<std::size_t>(par::max_threads())),
         outcomes_(batch.jobs.size()) {}

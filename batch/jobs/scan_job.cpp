@@ -4,6 +4,7 @@
 
 #include "batch/jobs/junction_table.hpp"
 #include "batch/jobs/record_sink.hpp"
+#include "batch/jobs/shared_mesh.hpp"
 #include "engine/scan.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "kernels/scan/plane_slice.hpp"
@@ -36,14 +37,14 @@ class ScanRecords {
  public:
   explicit ScanRecords(out::ClJob& cl)
       : cl_(cl),
-        segments_(cl, kGroup,
-                  {"cut path of segment i: its index among the job's cut paths (path_kind 0)",
-                   kSegmentKindEnum, "tool tip x, y, z where the segment starts, in cutting order",
-                   5,
-                   "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
-                   "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
-                   "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle "
-                   "of the major axis from +u (upper arc); vertical: u; unused columns 0"}),
+        segments_(
+            cl, kGroup,
+            {"cut path of segment i: its index among the job's cut paths (path_kind 0)",
+             kSegmentKindEnum, "tool tip x, y, z where the segment starts, in cutting order", 5,
+             "in the plane's (u, tip z), u = x on x lines, y on y lines (mm, rad): lines "
+             "(kinds 0, 3, 5): slope, intercept; sphere arc: centre u, centre z, radius; "
+             "ellipse and circle (2, 4): centre u, centre z, semi-major, semi-minor, angle "
+             "of the major axis from +u (upper arc); vertical: u; unused columns 0"}),
         junctions_(cl, kGroup,
                    "cut path of junction i: its index among the job's cut paths (path_kind 0)",
                    "tool tip x, y, z at the junction") {}
@@ -96,12 +97,23 @@ void push_scan_stats(const ScanStats& st, std::vector<out::StatValue>& stats) {
 
 ScanJobSummary run_scan_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
                             out::GcodeWriter* gcode, RunControl& control,
-                            std::vector<out::StatValue>& stats) {
+                            std::vector<out::StatValue>& stats, SharedMesh* shared,
+                            bool elements_shared) {
   ScanJobSummary summary;
   ScanRecords records(cl);
   RecordSink<ScanRecords> sink{cl, gcode, records, summary.points};
-  const ScanStats st = run_scan(
-      mesh, job.tool, job.scan, [&](const ScanChunk& ch) { sink(ch); }, control);
+  const auto to_sink = [&](const ScanChunk& ch) { sink(ch); };
+  ScanStats st;
+  if (shared && job.tool.type == CutterType::kBall) {
+    Stopwatch clock;  // building them, or waiting for the job that does, or nothing
+    const std::shared_ptr<const ScanElements> se = shared->scan_elements(job.tool.radius);
+    const double got_s = clock.seconds();
+    st = run_scan(*se, job.tool, job.scan, to_sink, control);
+    st.elements_s = got_s;
+  } else {
+    st = run_scan(mesh, job.tool, job.scan, to_sink, control);
+  }
+  stats.push_back({"elements_shared", std::int64_t{elements_shared}, ""});
   summary.compute_s = st.compute_s;
   const double write_s = st.sink_s;
 

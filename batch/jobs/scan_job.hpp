@@ -19,6 +19,8 @@
 
 namespace ncpath::jobs {
 
+class SharedMesh;
+
 struct ScanJobSummary {
   std::uint64_t points = 0;  // CL points written (cuts, links, the rapid)
   double compute_s = 0;      // the planes (wall time of the chunk computations)
@@ -26,8 +28,12 @@ struct ScanJobSummary {
 
 // mesh: already transformed. Throws std::invalid_argument when the tool is not a ball, the
 // parameters are bad or the mesh has no usable facet (the engine's message); Cancelled.
+// With `shared` (scan jobs of the batch with the same mesh and ball share their elements:
+// batch/jobs/shared_mesh.hpp), the elements come from it; `elements_shared` is the statistic
+// of that name (an earlier job builds them).
 ScanJobSummary run_scan_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
                             out::GcodeWriter* gcode, RunControl& control,
-                            std::vector<out::StatValue>& stats);
+                            std::vector<out::StatValue>& stats, SharedMesh* shared = nullptr,
+                            bool elements_shared = false);
 
 }  // namespace ncpath::jobs

@@ -48,9 +48,28 @@ SharedMesh::SharedMesh(const JobSpec& job) {
 }
 
 std::shared_ptr<const MeshVerifier> SharedMesh::swept_index() {
-  const std::lock_guard<std::mutex> lock(swept_mutex_);
-  if (!swept_) swept_ = std::make_shared<const MeshVerifier>(in_.mesh);
-  return swept_;
+  return swept_.get([&] { return std::make_shared<const MeshVerifier>(in_.mesh); });
+}
+
+void SharedMesh::expect_scan_jobs(double radius, std::size_t jobs) {
+  const std::lock_guard<std::mutex> lock(scan_mutex_);
+  scan_[radius].jobs_left = jobs;
+}
+
+std::shared_ptr<const ScanElements> SharedMesh::scan_elements(double radius) {
+  ScanShare* share;
+  {
+    const std::lock_guard<std::mutex> lock(scan_mutex_);
+    share = &scan_[radius];  // map nodes stay put until erased, after their last job
+  }
+  return share->elements.get(
+      [&] { return std::make_shared<const ScanElements>(build_scan_elements(in_.mesh, radius)); });
+}
+
+void SharedMesh::release_scan_elements(double radius) {
+  const std::lock_guard<std::mutex> lock(scan_mutex_);
+  auto it = scan_.find(radius);
+  if (it != scan_.end() && it->second.jobs_left > 0 && --it->second.jobs_left == 0) scan_.erase(it);
 }
 
 MeshCache::MeshCache(const std::vector<JobSpec>& jobs) : jobs_(jobs), key_(jobs.size()) {
@@ -60,7 +79,16 @@ MeshCache::MeshCache(const std::vector<JobSpec>& jobs) : jobs_(jobs), key_(jobs.
     auto [it, fresh] = entries_.try_emplace(key_[i]);
     if (fresh) it->second.first_user = i;
     ++it->second.users_left;
+    if (jobs[i].operation == Operation::kScan)
+      it->second.scan_jobs[jobs[i].tool.radius].push_back(i);
   }
+}
+
+void MeshCache::note_scan_share(const Entry& entry, std::size_t i, MeshUse& use) const {
+  if (jobs_[i].operation != Operation::kScan) return;
+  const std::vector<std::size_t>& group = entry.scan_jobs.at(jobs_[i].tool.radius);
+  use.share_scan_elements = group.size() > 1;
+  use.scan_elements_shared = group.front() != i;
 }
 
 MeshUse MeshCache::get(std::size_t i) {
@@ -69,30 +97,22 @@ MeshUse MeshCache::get(std::size_t i) {
     throw std::logic_error("MeshCache::get: job " + std::to_string(i) + " has no mesh");
   Stopwatch clock;
   MeshUse use;
-  std::unique_lock<std::mutex> lock(mutex_);
-  Entry& entry = entries_.at(key);
-  use.shared = entry.first_user != i;
-  if (entry.reading) {
-    const std::shared_future<std::shared_ptr<SharedMesh>> mesh = entry.mesh;
-    lock.unlock();
-    use.mesh = mesh.get();
-    use.seconds = clock.seconds();
-    return use;
+  Entry* entry;
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    entry = &entries_.at(key);  // stays put: erased only after this job's done(i)
   }
-  std::promise<std::shared_ptr<SharedMesh>> promise;
-  entry.mesh = promise.get_future().share();
-  entry.reading = true;
-  lock.unlock();
-  try {
-    use.mesh = std::make_shared<SharedMesh>(jobs_[i]);
-    promise.set_value(use.mesh);
-  } catch (...) {
-    promise.set_exception(std::current_exception());  // for the jobs waiting now
-    lock.lock();
-    entry.reading = false;  // later jobs try again
-    throw;
-  }
-  use.seconds = use.mesh->read_s();
+  use.shared = entry->first_user != i;
+  note_scan_share(*entry, i, use);
+  bool read_here = false;
+  use.mesh = entry->mesh.get([&] {
+    read_here = true;
+    auto mesh = std::make_shared<SharedMesh>(jobs_[i]);
+    for (const auto& [radius, group] : entry->scan_jobs)
+      if (group.size() > 1) mesh->expect_scan_jobs(radius, group.size());
+    return mesh;
+  });
+  use.seconds = read_here ? use.mesh->read_s() : clock.seconds();
   return use;
 }
 

@@ -91,27 +91,36 @@ params = { points = "xy.csv" }
   EXPECT_EQ(kinds[2], 0);
 }
 
+// Runs the jobs (TOML job tables) as one batch, all.h5, and each alone, one<k>.h5.
+void run_together_and_alone(const std::filesystem::path& dir,
+                            const std::vector<std::string>& jobs) {
+  std::ofstream all(dir / "all.toml");
+  all << "output = \"all.h5\"\n";
+  for (const std::string& j : jobs) all << "[[job]]\n" << j;
+  all.close();
+  for (std::size_t k = 0; k < jobs.size(); ++k)
+    std::ofstream(dir / ("one" + std::to_string(k) + ".toml"))
+        << "output = \"one" << k << ".h5\"\n[[job]]\n"
+        << jobs[k];
+  for (std::size_t k = 0; k <= jobs.size(); ++k) {
+    const std::string name = k == jobs.size() ? "all" : "one" + std::to_string(k);
+    const CmdResult r = ncpath("run " + (dir / (name + ".toml")).string() + " --quiet");
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.output;
+  }
+}
+
 // Jobs on the same file and transform share its read mesh and swept-tool index (the
 // verifier's and the chord guard's): each writes the datasets it writes when run alone, and
 // says whether it reused the mesh; another transform of the same file is read again.
 TEST(Cli, JobsOnOneMeshShareItAndWriteWhatTheyWriteAlone) {
   const auto dir = fixture_dir();
-  const std::string jobs[3] = {
-      "name = \"a\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
-      "params = { interval = 2, step = 0.5 }\n",
-      "name = \"b\"\noperation = \"zlevel\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
-      "params = { levels = [2.0, 2.5] }\n",
-      "name = \"c\"\ninput = \"part.stl\"\ntool = \"ball:4\"\ntransform = { scale = 1.5 }\n"
-      "params = { interval = 2, step = 0.5 }\n"};
-  std::ofstream(dir / "all.toml") << "output = \"all.h5\"\n[[job]]\n" << jobs[0] << "[[job]]\n"
-                                  << jobs[1] << "[[job]]\n" << jobs[2];
-  for (int k = 0; k < 3; ++k)
-    std::ofstream(dir / ("one" + std::to_string(k) + ".toml"))
-        << "output = \"one" << k << ".h5\"\n[[job]]\n" << jobs[k];
-  for (const std::string name : {"all", "one0", "one1", "one2"}) {
-    const CmdResult r = ncpath("run " + (dir / (name + ".toml")).string() + " --quiet");
-    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.output;
-  }
+  ASSERT_NO_FATAL_FAILURE(run_together_and_alone(
+      dir, {"name = \"a\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+            "params = { interval = 2, step = 0.5 }\n",
+            "name = \"b\"\noperation = \"zlevel\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+            "params = { levels = [2.0, 2.5] }\n",
+            "name = \"c\"\ninput = \"part.stl\"\ntool = \"ball:4\"\ntransform = { scale = 1.5 }\n"
+            "params = { interval = 2, step = 0.5 }\n"}));
   h5::Id all = h5::open_read(dir / "all.h5");
   const std::int64_t shared[3] = {0, 1, 0};
   for (int k = 0; k < 3; ++k) {
@@ -130,6 +139,39 @@ TEST(Cli, JobsOnOneMeshShareItAndWriteWhatTheyWriteAlone) {
     h5::Id g1(H5Gopen2(one, job.c_str(), H5P_DEFAULT));
     EXPECT_EQ(h5::attr_str(g, "input_sha256"), h5::attr_str(g1, "input_sha256"));
     EXPECT_EQ(h5::attr_str(g, "status"), "ok");
+  }
+}
+
+// Scan jobs on one mesh with the same ball share their elements (built once, by the first):
+// elements_shared 0, 1 and 0 for a job with another ball; each writes what it writes alone.
+TEST(Cli, ScanJobsOnOneMeshAndBallShareTheirElements) {
+  const auto dir = fixture_dir();
+  const std::string scan = "operation = \"scan\"\ninput = \"part.stl\"\n";
+  ASSERT_NO_FATAL_FAILURE(run_together_and_alone(
+      dir,
+      {"name = \"x\"\n" + scan + "tool = \"ball:4\"\nparams = { families = \"x\", interval = 1 }\n",
+       "name = \"y\"\n" + scan +
+           "tool = \"ball:4\"\nparams = { families = \"y\", interval = 1.5 }\n",
+       "name = \"z\"\n" + scan +
+           "tool = \"ball:6\"\nparams = { families = \"both\", interval = 2 }\n"}));
+  h5::Id all = h5::open_read(dir / "all.h5");
+  const std::int64_t shared[3] = {0, 1, 0};
+  for (int k = 0; k < 3; ++k) {
+    h5::Id one = h5::open_read(dir / ("one" + std::to_string(k) + ".h5"));
+    const std::string job = std::string("/jobs/") + "xyz"[k];
+    EXPECT_EQ(h5::read_all<std::int64_t>(all, job + "/stats/elements_shared", H5T_NATIVE_INT64),
+              std::vector<std::int64_t>{shared[k]})
+        << job;
+    EXPECT_EQ(h5::read_all<std::int64_t>(one, job + "/stats/elements_shared", H5T_NATIVE_INT64),
+              std::vector<std::int64_t>{0})
+        << job;
+    const auto points = h5::read_all<double>(all, job + "/cl/points", H5T_NATIVE_DOUBLE);
+    EXPECT_GT(points.size(), 30u) << job;
+    EXPECT_EQ(points, h5::read_all<double>(one, job + "/cl/points", H5T_NATIVE_DOUBLE)) << job;
+    for (const char* table : {"/scan/segment_start", "/scan/junction_position"})
+      EXPECT_EQ(h5::read_all<double>(all, job + table, H5T_NATIVE_DOUBLE),
+                h5::read_all<double>(one, job + table, H5T_NATIVE_DOUBLE))
+          << job << table;
   }
 }
 
