@@ -60,7 +60,7 @@ struct PathOut {
 }  // namespace
 
 FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const FilletParams& p,
-                        RunControl& control) {
+                        RunControl& control, const ConditionedMesh* conditioned) {
   if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: fillet-cut needs a ball-end mill");
@@ -82,7 +82,8 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
   Stopwatch pencil_clock;
   PencilParams pencil = p.pencil;
   pencil.stock = s;
-  const PencilResult ref = run_pencil(mesh, ball_cutter(p.reference_diameter), pencil, control);
+  const PencilResult ref =
+      run_pencil(mesh, ball_cutter(p.reference_diameter), pencil, control, conditioned);
   st.pencil = ref.stats;
   st.pencil_s = pencil_clock.seconds();
   if (control.cancel.load()) throw Cancelled{};

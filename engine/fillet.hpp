@@ -89,8 +89,9 @@ struct FilletResult {
 
 // `cutter` is the clean-up ball (radius r < reference radius). Throws Cancelled,
 // std::invalid_argument for bad params (a stock <= -r included).
+// `conditioned`: as for run_pencil (the reference ball's pencil paths).
 FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const FilletParams& params,
-                        RunControl& control);
+                        RunControl& control, const ConditionedMesh* conditioned = nullptr);
 
 ClChunk fillet_chunk(const FilletResult& result);
 

@@ -492,7 +492,7 @@ std::string validate_stock(double stock, double radius) {
 // mesh is conditioned first (condition_for_slicing) and s grown by its largest vertex move,
 // so the tool keeps s from the part as given.
 PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
-                        RunControl& control) {
+                        RunControl& control, const ConditionedMesh* conditioned) {
   if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: pencil-cut needs a ball-end mill");
@@ -500,7 +500,9 @@ PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const Pe
   if (std::string e = validate_stock(p.stock, cutter.radius); !e.empty())
     throw std::invalid_argument(e);
   Stopwatch clock;
-  const ConditionedMesh cond = condition_for_slicing(mesh);
+  ConditionedMesh own;
+  if (!conditioned) own = condition_for_slicing(mesh);
+  const ConditionedMesh& cond = conditioned ? *conditioned : own;
   const double condition_s = clock.seconds();
   const double stock = p.stock + cond.stats.max_move;
   Cutter grown = cutter;

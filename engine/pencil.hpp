@@ -128,8 +128,10 @@ struct PencilResult {
 
 // The cutter must be a ball (radius R). Throws Cancelled, std::invalid_argument for bad
 // params (a stock <= -R included).
+// `conditioned`: condition_for_slicing(mesh) made once by the caller for several operations
+// on the mesh; null: made here.
 PencilResult run_pencil(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& params,
-                        RunControl& control);
+                        RunControl& control, const ConditionedMesh* conditioned = nullptr);
 
 // The result as CL paths (a rapid one-point path before every piece but the first).
 ClChunk pencil_chunk(const PencilResult& result);

@@ -68,18 +68,17 @@ struct LevelOut {
 ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
                          const ZLevelOpParams& p,
                          const std::function<void(const ZLevelChunk&)>& sink,
-                         RunControl& control) {
+                         RunControl& control, const ConditionedMesh* conditioned) {
   if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
   if (cutter.type != CutterType::kBall)
     throw std::invalid_argument("tool: z-level contouring needs a ball-end mill");
   if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
   ZLevelOpStats st;
   Stopwatch el_clock;
-  ConditionedMesh cond;
-  if (p.condition) {
-    cond = condition_for_slicing(mesh);
-    st.condition = cond.stats;
-  }
+  ConditionedMesh own;
+  if (p.condition && !conditioned) own = condition_for_slicing(mesh);
+  const ConditionedMesh& cond = conditioned ? *conditioned : own;
+  if (p.condition) st.condition = cond.stats;
   const TriangleMesh& part = p.condition ? cond.mesh : mesh;
   // Sliced for the ball grown by the largest move (same centres: kernel tip = z - grow).
   const double grow = st.condition.max_move, R = cutter.radius + grow;

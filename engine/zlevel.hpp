@@ -94,9 +94,11 @@ struct ZLevelOpStats {
 };
 
 // The cutter must be a ball. Throws Cancelled, std::invalid_argument for bad params.
+// `conditioned`: condition_for_slicing(mesh) made once by the caller for several operations
+// on the mesh (used when params.condition); null: made here.
 ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
                          const ZLevelOpParams& params,
                          const std::function<void(const ZLevelChunk&)>& sink,
-                         RunControl& control);
+                         RunControl& control, const ConditionedMesh* conditioned = nullptr);
 
 }  // namespace ncpath

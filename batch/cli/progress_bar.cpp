@@ -71,6 +71,10 @@ void BatchProgress::started(std::size_t index, const std::string& name) {
 void BatchProgress::update(std::size_t index, std::uint64_t done, std::uint64_t total) {
   const std::lock_guard<std::mutex> lock(mutex_);
   if (running_.count(index) == 0) return;
+  // At most every 100 ms whichever job reports (switching the bar's job would redraw).
+  const auto now = std::chrono::steady_clock::now();
+  if (done < total && now - drawn_ < std::chrono::milliseconds(100)) return;
+  drawn_ = now;
   if (stale_ || shown_ != index) show(index);
   bar_.update(done, total);
 }

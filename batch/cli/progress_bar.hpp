@@ -51,6 +51,7 @@ class BatchProgress {
   std::map<std::size_t, Running> running_;
   std::size_t shown_ = 0;  // the job whose bar is on the line
   bool stale_ = true;      // jobs started or ended since the line's label was made
+  std::chrono::steady_clock::time_point drawn_{};
 };
 
 // "ETA 1m05s" for a stage `elapsed_s` into it with `done` of `total` units done (the rest at

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -20,10 +21,11 @@ constexpr std::uint64_t kJobBaseBytes = 64 * kMiB;
 // Peak bytes per facet of the mesh, by operation: peak RSS over facets on bunny00
 // Loop-subdivided twice (1,206,528 facets, binary STL, ball 5, fit to 200 mm, verify on;
 // docs/performance.md "Memory per facet"), rounded up with a quarter spare. Scan and the
-// z-level family grow with the number of planes and levels too; these are at the documented
-// intervals (0.5 mm; 0.5 mm step-down).
+// z-level family grow with the number of planes and levels too; these are at the measured
+// intervals (scan and pencil 0.5 mm, z-levels 1 mm step-down).
 std::uint64_t bytes_per_facet(Operation op) {
   switch (op) {
+    // clang-format off
     case Operation::kRaster: return 900;
     case Operation::kDrop: return 900;
     case Operation::kScan: return 1500;
@@ -31,6 +33,7 @@ std::uint64_t bytes_per_facet(Operation op) {
     case Operation::kPencil: return 2200;
     case Operation::kFillet: return 2200;
     default: return 0;
+    // clang-format on
   }
 }
 
@@ -39,7 +42,9 @@ std::uint64_t bytes_per_facet(Operation op) {
 std::uint64_t estimate_job_bytes(const JobSpec& job) {
   const std::uint64_t per_facet = job.error.empty() ? bytes_per_facet(job.operation) : 0;
   if (per_facet == 0) return kJobBaseBytes;
-  return kJobBaseBytes + per_facet * io::facet_count_hint(job.input);
+  const std::uint64_t facets = io::facet_count_hint(job.input);  // a header may say anything
+  const std::uint64_t most = std::numeric_limits<std::uint64_t>::max() / 2;
+  return facets > most / per_facet ? most : kJobBaseBytes + per_facet * facets;
 }
 
 std::uint64_t default_memory_limit() {
@@ -77,8 +82,7 @@ std::string parse_byte_size(const std::string& text, std::uint64_t& bytes) {
   return "";
 }
 
-Admission::Admission(std::vector<std::uint64_t> estimates, std::uint64_t limit,
-                     std::size_t slots)
+Admission::Admission(std::vector<std::uint64_t> estimates, std::uint64_t limit, std::size_t slots)
     : estimates_(std::move(estimates)),
       limit_(limit),
       slots_(std::max<std::size_t>(slots, 1)),
@@ -87,8 +91,8 @@ Admission::Admission(std::vector<std::uint64_t> estimates, std::uint64_t limit,
 std::vector<std::size_t> Admission::start_ready() {
   std::vector<std::size_t> ready;
   while (next_ < estimates_.size() &&
-         (running_ == 0 ||
-          (running_ < slots_ && in_use_ + estimates_[next_] <= limit_))) {
+         (running_ == 0 || (running_ < slots_ && estimates_[next_] <= limit_ &&
+                            in_use_ <= limit_ - estimates_[next_]))) {
     running_flag_[next_] = true;
     in_use_ += estimates_[next_];
     ++running_;

@@ -58,10 +58,11 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
 FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh,
                                 std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
-                                std::vector<out::StatValue>& stats) {
+                                std::vector<out::StatValue>& stats,
+                                const ConditionedMesh* conditioned) {
   FilletJobSummary summary;
   Stopwatch compute_clock;
-  const FilletResult r = run_fillet(mesh, job.tool, job.fillet, control);
+  const FilletResult r = run_fillet(mesh, job.tool, job.fillet, control, conditioned);
   summary.compute_s = compute_clock.seconds();
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "batch/io/mesh_reader.hpp"
@@ -52,14 +53,15 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
                   RunControl& control, std::vector<StatValue>& stats, JobOutcome& o,
                   std::unique_ptr<JobVerifier>& verifier) {
   SharedMesh& shared = *use.mesh;
-  // A scan job sharing its elements frees them when it is the group's last, however it ends.
+  // A job sharing a product of the mesh frees it when it is the last to need it, however it
+  // ends.
   struct Release {
-    SharedMesh* mesh;
-    double radius;
+    SharedMesh& mesh;
+    const std::string& product;
     ~Release() {
-      if (mesh) mesh->release_scan_elements(radius);
+      if (!product.empty()) mesh.release(product);
     }
-  } release{use.share_scan_elements ? &shared : nullptr, job.tool.radius};
+  } release{shared, use.product};
   const io::MeshReadResult& in = shared.in();
   stats.push_back({"input_format", in.stats.format, ""});
   stats.push_back({"facets_in_file", i64(in.stats.facets_in_file), ""});
@@ -78,29 +80,40 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
 
   const TriangleMesh& mesh = shared.mesh();
   out::GcodeWriter* gcode = open_gcode(bounding_box(mesh).hi.z());
+  // Z-level, pencil and fillet jobs slice the mesh conditioned: once for them when shared.
+  std::shared_ptr<const ConditionedMesh> conditioned;
+  if (use.product == "conditioned") {
+    Stopwatch clock;
+    conditioned = shared.conditioned();
+    stats.push_back({"conditioned_wait_s", clock.seconds(), "s"});
+  }
+  if (product_name(job) == "conditioned")
+    stats.push_back({"conditioned_shared", std::int64_t{use.product_shared}, ""});
   if (job.operation == Operation::kScan) {
     const ScanJobSummary r =
-        run_scan_job(job, mesh, cl, gcode, control, stats, release.mesh, use.scan_elements_shared);
+        run_scan_job(job, mesh, cl, gcode, control, stats, use.product.empty() ? nullptr : &shared,
+                     use.product_shared);
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kZLevel) {
-    const ZLevelJobSummary r = run_zlevel_job(job, mesh, cl, gcode, control, stats);
+    const ZLevelJobSummary r =
+        run_zlevel_job(job, mesh, cl, gcode, control, stats, conditioned.get());
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kPencil) {
-    const PencilJobSummary r =
-        run_pencil_job(job, mesh, timed_swept_index(shared, stats), cl, gcode, control, stats);
+    const PencilJobSummary r = run_pencil_job(job, mesh, timed_swept_index(shared, stats), cl,
+                                              gcode, control, stats, conditioned.get());
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kFillet) {
-    const FilletJobSummary r =
-        run_fillet_job(job, mesh, timed_swept_index(shared, stats), cl, gcode, control, stats);
+    const FilletJobSummary r = run_fillet_job(job, mesh, timed_swept_index(shared, stats), cl,
+                                              gcode, control, stats, conditioned.get());
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
@@ -155,8 +168,7 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
 
 // Runs one job; fills stats and returns the outcome. Never throws for job-level problems.
 JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out::ClJob& cl,
-                   const BatchObserver& obs, std::vector<StatValue>& stats) {
-  RunControl control;
+                   const BatchObserver& obs, RunControl& control, std::vector<StatValue>& stats) {
   if (obs.progress)
     control.progress = [&obs, index](std::uint64_t done, std::uint64_t total) {
       obs.progress(index, done, total);
@@ -260,24 +272,33 @@ std::string open_chain_warning(const std::vector<out::StatValue>& stats) {
 
 namespace {
 
-// The SHA-256 of each input file, computed once (under the lock: jobs rarely wait for it).
+// The SHA-256 of each input file, computed once; jobs on other files do not wait for it.
 class ShaCache {
  public:
   std::string get(const std::filesystem::path& input) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    auto [it, fresh] = sha_.try_emplace(input.string());
-    if (fresh) try {
-        it->second = out::sha256_file(input);
+    Entry* e;
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      e = &sha_[input.string()];
+    }
+    const std::lock_guard<std::mutex> lock(e->mutex);
+    if (!e->done) try {
+        e->sha = out::sha256_file(input);
+        e->done = true;
       } catch (const std::exception&) {
-        sha_.erase(it);
-        return "";  // unreadable input: the job reports why
+        return "";  // unreadable input: the job reports why (a later job tries again)
       }
-    return it->second;
+    return e->sha;
   }
 
  private:
-  std::mutex mutex_;
-  std::map<std::string, std::string> sha_;
+  struct Entry {
+    std::mutex mutex;
+    std::string sha;
+    bool done = false;
+  };
+  std::mutex mutex_;                  // the map
+  std::map<std::string, Entry> sha_;  // entries stay put
 };
 
 // One batch run: the jobs as tasks, started by `admission`, written by `output`.
@@ -327,31 +348,53 @@ class BatchRun {
                  });
   }
 
+  // Runs job i; never throws. An error of the output file stops the batch: no more jobs
+  // start and the running ones are cancelled.
   void run_job(std::size_t i) {
     const JobSpec& job = batch_.jobs[i];
-    if (obs_.job_started) obs_.job_started(i, batch_.jobs.size(), job);
-    out::JobInfo info;
-    info.operation = operation_name(job.operation);
-    info.input_path = job.input.string();
-    info.input_sha256 = shas_.get(job.input);
-    info.tool_json = job.error.empty() ? tool_json(job.tool) : "{}";
-    info.params_json = params_json(job);
     JobOutcome& o = outcomes_[i];
+    RunControl control;
+    watch(&control, true);
+    bool mesh_done = false;
     try {
+      if (obs_.job_started) obs_.job_started(i, batch_.jobs.size(), job);
+      out::JobInfo info;
+      info.operation = operation_name(job.operation);
+      info.input_path = job.input.string();
+      info.input_sha256 = shas_.get(job.input);
+      info.tool_json = job.error.empty() ? tool_json(job.tool) : "{}";
+      info.params_json = params_json(job);
       out::ClJob cl = output_.begin(i, job.name, info);
       std::vector<StatValue> stats;
-      o = run_one(job, i, meshes_, cl, obs_, stats);
-      meshes_.done(i);
+      o = run_one(job, i, meshes_, cl, obs_, control, stats);
+      meshes_.done(i);  // before writing: a mesh no later job needs is freed now
+      mesh_done = true;
       cl.set_status(o.status, o.message);
       cl.write_stats(stats);
       cl.close();
       output_.finished(i);
-    } catch (...) {  // the output file failed: the batch stops
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (!error_) error_ = std::current_exception();
-      return;
+    } catch (...) {
+      stop(std::current_exception());
+      if (o.status.empty()) o = {job.name, "io_error", "the batch stopped: the output failed"};
     }
+    if (!mesh_done) meshes_.done(i);
+    watch(&control, false);
     if (obs_.job_finished) obs_.job_finished(i, o);
+  }
+
+  void watch(RunControl* control, bool on) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (on && error_) control->cancel = true;
+    if (on)
+      controls_.insert(control);
+    else
+      controls_.erase(control);
+  }
+
+  void stop(std::exception_ptr error) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (!error_) error_ = error;
+    for (RunControl* c : controls_) c->cancel = true;
   }
 
   const BatchSpec& batch_;
@@ -359,9 +402,10 @@ class BatchRun {
   MeshCache meshes_;  // meshes read once, shared by their jobs
   ShaCache shas_;
   OrderedOutput output_;
-  std::mutex mutex_;  // admission_ and error_
+  std::mutex mutex_;  // admission_, error_ and controls_
   Admission admission_;
   std::exception_ptr error_;
+  std::set<RunControl*> controls_;  // of the running jobs
   std::vector<JobOutcome> outcomes_;
   par::TaskGroup tasks_;
 };

@@ -7,6 +7,7 @@
 
 #include <charconv>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -294,6 +295,7 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
   if (!arr || arr->empty())
     throw std::runtime_error(source_name + ": no [[job]] tables: nothing to run");
   std::set<std::string> names;
+  std::map<std::filesystem::path, std::string> gcode_of;  // G-code file -> its job
   for (std::size_t i = 0; i < arr->size(); ++i) {
     const toml::table* t = (*arr)[i].as_table();
     if (!t)
@@ -305,6 +307,15 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
       job.error_status = "invalid_parameter";
       job.name += "#";
       job.name += std::to_string(i + 1);
+    }
+    // Jobs may run at the same time: two of them must not write one G-code file.
+    if (!job.gcode.empty() && job.error.empty()) {
+      const auto [at, fresh] = gcode_of.try_emplace(job.gcode.lexically_normal(), job.name);
+      if (!fresh) {
+        job.error = "gcode.path '" + job.gcode.string() + "' is also job '" + at->second +
+                    "''s: each job needs a G-code file of its own";
+        job.error_status = "invalid_parameter";
+      }
     }
     b.jobs.push_back(std::move(job));
   }

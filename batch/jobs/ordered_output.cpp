@@ -51,9 +51,15 @@ void OrderedOutput::finished(std::size_t index) {
   if (job.where == Where::kNotBegun || job.finished)
     throw std::logic_error("OrderedOutput::finished: job " + std::to_string(index) +
                            " is not running");
-  job.finished = true;
   if (job.spool) job.spool->close();
-  write_finished_in_order();
+  job.finished = true;
+  if (failed_) return;  // the file failed before: the batch is stopping
+  try {
+    write_finished_in_order();
+  } catch (...) {
+    failed_ = true;  // a copy may have stopped half-way: no more writes into the file
+    throw;
+  }
 }
 
 void OrderedOutput::write_finished_in_order() {

@@ -29,7 +29,8 @@ class OrderedOutput {
   // out::ClFile::begin_job.
   out::ClJob begin(std::size_t index, const std::string& name, const out::JobInfo& info);
   // Job `index` has closed its ClJob: it and every finished job after it, up to the first
-  // one still running, go into the file. std::runtime_error when the file cannot be written.
+  // one still running, go into the file. std::runtime_error when the file cannot be written;
+  // after that, finished jobs are no longer copied (the batch is stopping).
   void finished(std::size_t index);
 
   // The spool file of job `index` (whether or not it is used).
@@ -52,6 +53,7 @@ class OrderedOutput {
   std::vector<Job> jobs_;
   std::size_t next_ = 0;  // first job not in the file yet
   std::size_t spooled_ = 0;
+  bool failed_ = false;  // writing into the file failed
 };
 
 }  // namespace ncpath::jobs

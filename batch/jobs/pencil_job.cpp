@@ -84,10 +84,11 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
 PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh,
                                 std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
-                                std::vector<out::StatValue>& stats) {
+                                std::vector<out::StatValue>& stats,
+                                const ConditionedMesh* conditioned) {
   PencilJobSummary summary;
   Stopwatch compute_clock;
-  const PencilResult r = run_pencil(mesh, job.tool, job.pencil, control);
+  const PencilResult r = run_pencil(mesh, job.tool, job.pencil, control, conditioned);
   summary.compute_s = compute_clock.seconds();
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 

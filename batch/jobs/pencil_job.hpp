@@ -34,6 +34,7 @@ struct PencilJobSummary {
 PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh,
                                 std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
-                                std::vector<out::StatValue>& stats);
+                                std::vector<out::StatValue>& stats,
+                                const ConditionedMesh* conditioned = nullptr);
 
 }  // namespace ncpath::jobs

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "engine/offset_elements_build.hpp"
 #include "engine/run_control.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
 
@@ -23,6 +24,12 @@ bool uses_mesh(const JobSpec& job) {
     default:
       return false;
   }
+}
+
+std::string product_name_scan(double radius) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "scan|%a", radius);
+  return buf;
 }
 
 // The file (made absolute, lexically normal) and the transform's values, exactly (hex floats).
@@ -51,25 +58,54 @@ std::shared_ptr<const MeshVerifier> SharedMesh::swept_index() {
   return swept_.get([&] { return std::make_shared<const MeshVerifier>(in_.mesh); });
 }
 
-void SharedMesh::expect_scan_jobs(double radius, std::size_t jobs) {
-  const std::lock_guard<std::mutex> lock(scan_mutex_);
-  scan_[radius].jobs_left = jobs;
+void SharedMesh::expect_jobs(const std::string& name, std::size_t jobs) {
+  const std::lock_guard<std::mutex> lock(products_mutex_);
+  products_[name].jobs_left = jobs;
+}
+
+template <class T, class Make>
+std::shared_ptr<const T> SharedMesh::product(const std::string& name, Make&& make) {
+  Product* p;
+  {
+    const std::lock_guard<std::mutex> lock(products_mutex_);
+    p = &products_[name];  // map nodes stay put until erased, after their last job
+  }
+  return std::static_pointer_cast<const T>(
+      p->value.get([&] { return std::shared_ptr<const void>(make()); }));
 }
 
 std::shared_ptr<const ScanElements> SharedMesh::scan_elements(double radius) {
-  ScanShare* share;
-  {
-    const std::lock_guard<std::mutex> lock(scan_mutex_);
-    share = &scan_[radius];  // map nodes stay put until erased, after their last job
-  }
-  return share->elements.get(
-      [&] { return std::make_shared<const ScanElements>(build_scan_elements(in_.mesh, radius)); });
+  return product<ScanElements>(product_name_scan(radius), [&] {
+    return std::make_shared<const ScanElements>(build_scan_elements(in_.mesh, radius));
+  });
 }
 
-void SharedMesh::release_scan_elements(double radius) {
-  const std::lock_guard<std::mutex> lock(scan_mutex_);
-  auto it = scan_.find(radius);
-  if (it != scan_.end() && it->second.jobs_left > 0 && --it->second.jobs_left == 0) scan_.erase(it);
+std::shared_ptr<const ConditionedMesh> SharedMesh::conditioned() {
+  return product<ConditionedMesh>("conditioned", [&] {
+    return std::make_shared<const ConditionedMesh>(condition_for_slicing(in_.mesh));
+  });
+}
+
+void SharedMesh::release(const std::string& name) {
+  const std::lock_guard<std::mutex> lock(products_mutex_);
+  auto it = products_.find(name);
+  if (it != products_.end() && it->second.jobs_left > 0 && --it->second.jobs_left == 0)
+    products_.erase(it);
+}
+
+std::string product_name(const JobSpec& job) {
+  if (!job.error.empty()) return "";
+  switch (job.operation) {
+    case Operation::kScan:  // a scan job with another tool fails before it needs elements
+      return job.tool.type == CutterType::kBall ? product_name_scan(job.tool.radius) : "";
+    case Operation::kZLevel:
+      return job.zlevel.condition ? "conditioned" : "";
+    case Operation::kPencil:
+    case Operation::kFillet:
+      return "conditioned";
+    default:
+      return "";
+  }
 }
 
 MeshCache::MeshCache(const std::vector<JobSpec>& jobs) : jobs_(jobs), key_(jobs.size()) {
@@ -79,16 +115,18 @@ MeshCache::MeshCache(const std::vector<JobSpec>& jobs) : jobs_(jobs), key_(jobs.
     auto [it, fresh] = entries_.try_emplace(key_[i]);
     if (fresh) it->second.first_user = i;
     ++it->second.users_left;
-    if (jobs[i].operation == Operation::kScan)
-      it->second.scan_jobs[jobs[i].tool.radius].push_back(i);
+    if (const std::string name = product_name(jobs[i]); !name.empty())
+      it->second.product_jobs[name].push_back(i);
   }
 }
 
-void MeshCache::note_scan_share(const Entry& entry, std::size_t i, MeshUse& use) const {
-  if (jobs_[i].operation != Operation::kScan) return;
-  const std::vector<std::size_t>& group = entry.scan_jobs.at(jobs_[i].tool.radius);
-  use.share_scan_elements = group.size() > 1;
-  use.scan_elements_shared = group.front() != i;
+void MeshCache::note_product(const Entry& entry, std::size_t i, MeshUse& use) const {
+  const std::string name = product_name(jobs_[i]);
+  if (name.empty()) return;
+  const std::vector<std::size_t>& group = entry.product_jobs.at(name);
+  if (group.size() < 2) return;
+  use.product = name;
+  use.product_shared = group.front() != i;
 }
 
 MeshUse MeshCache::get(std::size_t i) {
@@ -103,13 +141,13 @@ MeshUse MeshCache::get(std::size_t i) {
     entry = &entries_.at(key);  // stays put: erased only after this job's done(i)
   }
   use.shared = entry->first_user != i;
-  note_scan_share(*entry, i, use);
+  note_product(*entry, i, use);
   bool read_here = false;
   use.mesh = entry->mesh.get([&] {
     read_here = true;
     auto mesh = std::make_shared<SharedMesh>(jobs_[i]);
-    for (const auto& [radius, group] : entry->scan_jobs)
-      if (group.size() > 1) mesh->expect_scan_jobs(radius, group.size());
+    for (const auto& [name, group] : entry->product_jobs)
+      if (group.size() > 1) mesh->expect_jobs(name, group.size());
     return mesh;
   });
   use.seconds = read_here ? use.mesh->read_s() : clock.seconds();

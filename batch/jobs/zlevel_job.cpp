@@ -109,7 +109,8 @@ void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& sta
 
 ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
-                                std::vector<out::StatValue>& stats) {
+                                std::vector<out::StatValue>& stats,
+                                const ConditionedMesh* conditioned) {
   ZLevelJobSummary summary;
   ZLevelRecords records(cl);
   RecordSink<ZLevelRecords> sink{cl, gcode, records, summary.points};
@@ -118,7 +119,7 @@ ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, ou
     assert(static_cast<std::size_t>(cut_path_count(ch.cl)) == ch.contour_level.size());
     sink(ch);
   };
-  const ZLevelOpStats st = run_zlevel(mesh, job.tool, job.zlevel, on_chunk, control);
+  const ZLevelOpStats st = run_zlevel(mesh, job.tool, job.zlevel, on_chunk, control, conditioned);
   summary.compute_s = st.compute_s;
   const double write_s = st.sink_s;
 

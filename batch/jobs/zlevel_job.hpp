@@ -30,6 +30,7 @@ struct ZLevelJobSummary {
 // parameters are bad or the mesh has no usable facet (the engine's message); Cancelled.
 ZLevelJobSummary run_zlevel_job(const JobSpec& job, const TriangleMesh& mesh, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
-                                std::vector<out::StatValue>& stats);
+                                std::vector<out::StatValue>& stats,
+                                const ConditionedMesh* conditioned = nullptr);
 
 }  // namespace ncpath::jobs

@@ -83,8 +83,10 @@ void write_whole(detail::FileState& s, const std::string& group, const std::stri
                  std::span<const T> data, std::size_t cols, std::string_view unit,
                  std::string_view description) {
   const std::size_t rows = rows_of(data.size(), cols, name);
-  h5::ChunkAppender out =
-      make_array(s, group, name, array_type_of<T>(), cols, unit, description, rows);
+  h5::ChunkAppender out = [&] {  // the appender compresses without the lock
+    const auto lock = h5::library_lock();
+    return make_array(s, group, name, array_type_of<T>(), cols, unit, description, rows);
+  }();
   out.append(data.data(), rows);
   out.finish();
 }
@@ -112,19 +114,16 @@ void append_streamed(detail::FileState& s, ClJob::ArrayId id, std::span<const T>
 void ClJob::write_array(const std::string& group, const std::string& name,
                         std::span<const double> data, std::size_t cols, std::string_view unit,
                         std::string_view description) {
-  const auto lock = h5::library_lock();
   write_whole(open_file("write_array"), group, name, data, cols, unit, description);
 }
 void ClJob::write_array(const std::string& group, const std::string& name,
                         std::span<const std::int64_t> data, std::size_t cols, std::string_view unit,
                         std::string_view description) {
-  const auto lock = h5::library_lock();
   write_whole(open_file("write_array"), group, name, data, cols, unit, description);
 }
 void ClJob::write_array(const std::string& group, const std::string& name,
                         std::span<const std::uint8_t> data, std::size_t cols, std::string_view unit,
                         std::string_view description) {
-  const auto lock = h5::library_lock();
   write_whole(open_file("write_array"), group, name, data, cols, unit, description);
 }
 

@@ -49,7 +49,6 @@ detail::FileState& ClJob::open_file(const char* operation) const {
 
 void ClJob::close() {
   if (!file_) return;
-  const auto lock = h5::library_lock();
   std::shared_ptr<detail::FileState> file = std::move(file_);
   if (file->job && file->job_serial == serial_) file->close_job();
 }

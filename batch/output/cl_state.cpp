@@ -35,8 +35,7 @@ void check_status_code(std::string_view status) {
 namespace detail {
 
 void FileState::close_job() {
-  if (!job) return;
-  const auto lock = h5::library_lock();
+  if (!job) return;  // the appenders lock around their HDF5 calls, compressing without it
   std::unique_ptr<JobState> j = std::move(job);
   std::exception_ptr first;
   for (auto* a : {&j->points, &j->contact, &j->offsets, &j->kinds}) {
@@ -58,6 +57,7 @@ void FileState::close_job() {
   j.reset();
   // Flushing after every job puts finished jobs on disk: best effort if the process dies later.
   try {
+    const auto lock = h5::library_lock();
     if (H5Fflush(file.get(), H5F_SCOPE_LOCAL) < 0) h5::fail(ctx, "flush file");
   } catch (...) {
     if (!first) first = std::current_exception();

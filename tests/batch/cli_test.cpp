@@ -91,6 +91,13 @@ params = { points = "xy.csv" }
   EXPECT_EQ(kinds[2], 0);
 }
 
+// Job `job` (a path /jobs/<name>) of file f has the int64 statistic `stat` equal to value.
+void expect_stat(hid_t f, const std::string& job, const std::string& stat, std::int64_t value) {
+  EXPECT_EQ(h5::read_all<std::int64_t>(f, job + "/stats/" + stat, H5T_NATIVE_INT64),
+            std::vector<std::int64_t>{value})
+      << job << " " << stat;
+}
+
 // Runs the jobs (TOML job tables) as one batch, all.h5, and each alone, one<k>.h5.
 void run_together_and_alone(const std::filesystem::path& dir,
                             const std::vector<std::string>& jobs) {
@@ -126,9 +133,7 @@ TEST(Cli, JobsOnOneMeshShareItAndWriteWhatTheyWriteAlone) {
   for (int k = 0; k < 3; ++k) {
     h5::Id one = h5::open_read(dir / ("one" + std::to_string(k) + ".h5"));
     const std::string job = std::string("/jobs/") + char('a' + k);
-    EXPECT_EQ(h5::read_all<std::int64_t>(all, job + "/stats/mesh_shared", H5T_NATIVE_INT64),
-              std::vector<std::int64_t>{shared[k]})
-        << job;
+    expect_stat(all, job, "mesh_shared", shared[k]);
     const auto points = h5::read_all<double>(all, job + "/cl/points", H5T_NATIVE_DOUBLE);
     EXPECT_GT(points.size(), 30u) << job;
     EXPECT_EQ(points, h5::read_all<double>(one, job + "/cl/points", H5T_NATIVE_DOUBLE)) << job;
@@ -159,12 +164,8 @@ TEST(Cli, ScanJobsOnOneMeshAndBallShareTheirElements) {
   for (int k = 0; k < 3; ++k) {
     h5::Id one = h5::open_read(dir / ("one" + std::to_string(k) + ".h5"));
     const std::string job = std::string("/jobs/") + "xyz"[k];
-    EXPECT_EQ(h5::read_all<std::int64_t>(all, job + "/stats/elements_shared", H5T_NATIVE_INT64),
-              std::vector<std::int64_t>{shared[k]})
-        << job;
-    EXPECT_EQ(h5::read_all<std::int64_t>(one, job + "/stats/elements_shared", H5T_NATIVE_INT64),
-              std::vector<std::int64_t>{0})
-        << job;
+    expect_stat(all, job, "elements_shared", shared[k]);
+    expect_stat(one, job, "elements_shared", 0);
     const auto points = h5::read_all<double>(all, job + "/cl/points", H5T_NATIVE_DOUBLE);
     EXPECT_GT(points.size(), 30u) << job;
     EXPECT_EQ(points, h5::read_all<double>(one, job + "/cl/points", H5T_NATIVE_DOUBLE)) << job;
@@ -173,6 +174,33 @@ TEST(Cli, ScanJobsOnOneMeshAndBallShareTheirElements) {
                 h5::read_all<double>(one, job + table, H5T_NATIVE_DOUBLE))
           << job << table;
   }
+}
+
+// Z-level, pencil and fillet jobs on one mesh condition it once (conditioned_shared 0, 1, 1),
+// and each writes what it writes alone.
+TEST(Cli, SlicingJobsOnOneMeshConditionItOnce) {
+  const auto dir = fixture_dir();
+  const std::string part = "input = \"part.stl\"\n";
+  ASSERT_NO_FATAL_FAILURE(run_together_and_alone(
+      dir, {"name = \"z\"\noperation = \"zlevel\"\n" + part +
+                "tool = \"ball:4\"\nparams = { step_down = 0.5 }\n",
+            "name = \"p\"\noperation = \"pencil\"\n" + part +
+                "tool = \"ball:6\"\nparams = { interval = 0.5 }\n",
+            "name = \"f\"\noperation = \"fillet\"\n" + part +
+                "tool = \"ball:2\"\nparams = { reference = \"ball:8\", interval = 0.5 }\n"}));
+  h5::Id all = h5::open_read(dir / "all.h5");
+  const std::int64_t shared[3] = {0, 1, 1};
+  for (int k = 0; k < 3; ++k) {
+    h5::Id one = h5::open_read(dir / ("one" + std::to_string(k) + ".h5"));
+    const std::string job = std::string("/jobs/") + "zpf"[k];
+    expect_stat(all, job, "conditioned_shared", shared[k]);
+    h5::Id g(H5Gopen2(all, job.c_str(), H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(g, "status"), "ok") << job;
+    EXPECT_EQ(h5::read_all<double>(all, job + "/cl/points", H5T_NATIVE_DOUBLE),
+              h5::read_all<double>(one, job + "/cl/points", H5T_NATIVE_DOUBLE))
+        << job;
+  }
+  EXPECT_GT(h5::read_all<double>(all, "/jobs/z/cl/points", H5T_NATIVE_DOUBLE).size(), 30u);
 }
 
 TEST(Cli, OneAndTwoThreadsWriteIdenticalDatasets) {

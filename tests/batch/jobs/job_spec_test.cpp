@@ -143,6 +143,20 @@ TEST(JobSpec, SyntaxErrorsNameFileLineAndColumn) {
                std::runtime_error);
 }
 
+// Two jobs of a batch may run at the same time: the second naming the first's G-code file is
+// refused (named), the first keeps it.
+TEST(JobSpec, TwoJobsCannotWriteOneGcodeFile) {
+  const std::string job = "input=\"a\"\ntool=\"ball:1\"\ngcode = { path = \"out/p.ngc\" }\n";
+  const BatchSpec b = parse("[[job]]\nname = \"one\"\n" + job + "[[job]]\nname = \"two\"\n" + job +
+                            "[[job]]\nname = \"three\"\ninput=\"a\"\ntool=\"ball:1\"\n"
+                            "gcode = { path = \"out/../out/q.ngc\" }\n");
+  ASSERT_EQ(b.jobs.size(), 3u);
+  EXPECT_EQ(b.jobs[0].error, "");
+  EXPECT_EQ(b.jobs[1].error_status, "invalid_parameter");
+  EXPECT_NE(b.jobs[1].error.find("also job 'one'"), std::string::npos) << b.jobs[1].error;
+  EXPECT_EQ(b.jobs[2].error, "");
+}
+
 // The batch's own keys: threads, concurrent_jobs and memory_limit, read or named when wrong.
 TEST(JobSpec, BatchKeysAreReadOrNamed) {
   const std::string job = "[[job]]\ninput=\"a\"\ntool=\"ball:1\"\n";
