@@ -8,6 +8,7 @@
 
 #include "batch/io/read_error.hpp"
 #include "batch/io/reader_support.hpp"
+#include "tests/batch/io/test_files.hpp"
 
 namespace ncpath::io::detail {
 namespace {
@@ -43,12 +44,7 @@ std::string off_text(int n) {
 }
 
 std::string error_of(const std::string& text, std::size_t piece_bytes) {
-  try {
-    parse_off_pieces("p.off", text, piece_bytes);
-  } catch (const ReadError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::read_error_of([&] { parse_off_pieces("p.off", text, piece_bytes); });
 }
 
 TEST(OffPieces, SameMeshAndStatisticsAsOnePiece) {
@@ -57,15 +53,9 @@ TEST(OffPieces, SameMeshAndStatisticsAsOnePiece) {
   ASSERT_EQ(whole.stats.facets_in_file, 1600u);
   EXPECT_GT(whole.stats.facets_degenerate, 10u);
   EXPECT_GT(whole.stats.polygons_triangulated, 400u);
+  EXPECT_EQ(whole.stats.format, "off");
   for (const std::size_t piece : {std::size_t(100), std::size_t(1000), std::size_t(7000)}) {
-    const MeshReadResult parts = parse_off_pieces("p.off", text, piece);
-    EXPECT_EQ(parts.mesh.vertices, whole.mesh.vertices) << piece;
-    EXPECT_EQ(parts.mesh.facets, whole.mesh.facets) << piece;
-    EXPECT_EQ(parts.stats.facets_in_file, whole.stats.facets_in_file);
-    EXPECT_EQ(parts.stats.facets_read, whole.stats.facets_read);
-    EXPECT_EQ(parts.stats.facets_degenerate, whole.stats.facets_degenerate);
-    EXPECT_EQ(parts.stats.polygons_triangulated, whole.stats.polygons_triangulated);
-    EXPECT_EQ(parts.stats.format, "off");
+    testing::expect_same_read(parse_off_pieces("p.off", text, piece), whole, piece);
   }
 }
 

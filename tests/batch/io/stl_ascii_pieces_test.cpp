@@ -7,6 +7,7 @@
 
 #include "batch/io/read_error.hpp"
 #include "batch/io/reader_support.hpp"
+#include "tests/batch/io/test_files.hpp"
 
 namespace ncpath::io::detail {
 namespace {
@@ -36,12 +37,7 @@ std::string ascii_stl(int facets_per_solid) {
 }
 
 std::string error_of(const std::string& text, std::size_t piece_bytes) {
-  try {
-    parse_ascii_stl("p.stl", text, piece_bytes);
-  } catch (const ReadError& e) {
-    return e.what();
-  }
-  return "";
+  return testing::read_error_of([&] { parse_ascii_stl("p.stl", text, piece_bytes); });
 }
 
 TEST(StlAsciiPieces, SameMeshAndStatisticsAsOnePiece) {
@@ -50,13 +46,7 @@ TEST(StlAsciiPieces, SameMeshAndStatisticsAsOnePiece) {
   ASSERT_EQ(whole.stats.facets_in_file, 2100u);
   EXPECT_GT(whole.stats.facets_degenerate, 30u);
   for (const std::size_t piece : {std::size_t(1000), std::size_t(4096), std::size_t(50000)}) {
-    const MeshReadResult parts = parse_ascii_stl("p.stl", text, piece);
-    EXPECT_EQ(parts.mesh.vertices, whole.mesh.vertices) << piece;
-    EXPECT_EQ(parts.mesh.facets, whole.mesh.facets) << piece;
-    EXPECT_EQ(parts.stats.facets_in_file, whole.stats.facets_in_file);
-    EXPECT_EQ(parts.stats.facets_read, whole.stats.facets_read);
-    EXPECT_EQ(parts.stats.facets_degenerate, whole.stats.facets_degenerate);
-    EXPECT_EQ(parts.stats.format, whole.stats.format);
+    testing::expect_same_read(parse_ascii_stl("p.stl", text, piece), whole, piece);
   }
 }
 

@@ -18,6 +18,7 @@
 
 #include <unistd.h>
 
+#include "batch/io/mesh_reader.hpp"
 #include "batch/io/read_error.hpp"
 
 namespace ncpath::io::testing {
@@ -97,6 +98,29 @@ void expect_read_error(F&& f, std::initializer_list<std::string_view> parts) {
       EXPECT_NE(what.find(part), std::string::npos)
           << "message lacks \"" << part << "\"\n  message: " << what;
   }
+}
+
+// A file read in pieces against the same file read as one: the same mesh and statistics.
+inline void expect_same_read(const MeshReadResult& pieces, const MeshReadResult& whole,
+                             std::size_t piece_bytes) {
+  EXPECT_EQ(pieces.mesh.vertices, whole.mesh.vertices) << piece_bytes;
+  EXPECT_EQ(pieces.mesh.facets, whole.mesh.facets) << piece_bytes;
+  EXPECT_EQ(pieces.stats.facets_in_file, whole.stats.facets_in_file) << piece_bytes;
+  EXPECT_EQ(pieces.stats.facets_read, whole.stats.facets_read) << piece_bytes;
+  EXPECT_EQ(pieces.stats.facets_degenerate, whole.stats.facets_degenerate) << piece_bytes;
+  EXPECT_EQ(pieces.stats.polygons_triangulated, whole.stats.polygons_triangulated) << piece_bytes;
+  EXPECT_EQ(pieces.stats.format, whole.stats.format) << piece_bytes;
+}
+
+// The ReadError message of read(), or "" when it reads.
+template <class Read>
+std::string read_error_of(Read&& read) {
+  try {
+    read();
+  } catch (const ReadError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace ncpath::io::testing
