@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 
 #include "batch/io/reader_support.hpp"
 
@@ -33,19 +32,6 @@ constexpr std::size_t kHintHeadBytes = 4096;
 constexpr std::uint64_t kAsciiStlBytesPerFacetMin = 80;
 constexpr std::uint64_t kOffBytesPerFacetMin = 11;
 
-// The face count of an OFF header ("OFF", comments, then "vertices faces edges"), 0 when
-// `head` does not show one. Polygons count once (a quad becomes two triangles).
-std::uint64_t off_header_faces(std::string_view head) {
-  std::string text(head);
-  for (std::size_t c = text.find('#'); c != std::string::npos; c = text.find('#', c))
-    for (; c < text.size() && text[c] != '\n'; ++c) text[c] = ' ';
-  std::istringstream in(text);
-  std::string keyword;
-  std::uint64_t vertices = 0, faces = 0;
-  if (!(in >> keyword) || keyword != "OFF" || !(in >> vertices >> faces)) return 0;
-  return faces;
-}
-
 }  // namespace
 
 MeshReadResult read_mesh(const std::filesystem::path& path) {
@@ -66,8 +52,10 @@ std::uint64_t facet_count_hint(const std::filesystem::path& path) {
   std::uint32_t count = 0;
   if (head.size() >= 84) std::memcpy(&count, head.data() + 80, 4);
   if (head.size() >= 84 && 84 + 50 * std::uint64_t{count} == size) return count;
-  if (has_off_extension(path) || detail::starts_with_keyword(head, "off", true))
-    if (const std::uint64_t faces = off_header_faces(head)) return faces;
+  std::uint64_t vertices = 0, faces = 0;
+  if ((has_off_extension(path) || detail::starts_with_keyword(head, "off", true)) &&
+      detail::off_header_counts(head, vertices, faces) && faces > 0)
+    return faces;
   return size / (has_off_extension(path) ? kOffBytesPerFacetMin : kAsciiStlBytesPerFacetMin);
 }
 

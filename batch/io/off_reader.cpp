@@ -284,6 +284,20 @@ std::optional<MeshReadResult> join_off(std::vector<Vec3>& vertices,
 
 }  // namespace
 
+bool off_header_counts(std::string_view bytes, std::uint64_t& vertices, std::uint64_t& faces) {
+  const std::filesystem::path where("header");  // the parser keeps a reference
+  try {
+    OffParser head(where, bytes);
+    const std::size_t body = head.parse_header_only();
+    if (body == bytes.size() && !bytes.ends_with('\n')) return false;  // counts cut off
+    vertices = head.vertex_count();
+    faces = head.face_count();
+    return true;
+  } catch (const ReadError&) {
+    return false;
+  }
+}
+
 MeshReadResult parse_off(const std::filesystem::path& path, std::string_view bytes) {
   return parse_off_pieces(path, bytes, kOffPieceBytes);
 }

@@ -22,6 +22,10 @@ MeshReadResult parse_off(const std::filesystem::path& path, std::string_view byt
 // the same result as one piece, and on any error the whole-file parser's exact message.
 MeshReadResult parse_ascii_stl(const std::filesystem::path& path, std::string_view bytes,
                                std::size_t piece_bytes);
+// The vertex and face counts of an OFF header at the start of `bytes` (which may hold only
+// the file's beginning), read by the OFF parser itself; false when it is not a valid header
+// or `bytes` ends inside it.
+bool off_header_counts(std::string_view bytes, std::uint64_t& vertices, std::uint64_t& faces);
 // An OFF file whose body is cut into pieces of about piece_bytes (whole lines), parsed in
 // parallel: the same result as parse_off, and on any error parse_off's exact message.
 MeshReadResult parse_off_pieces(const std::filesystem::path& path, std::string_view bytes,
