@@ -37,6 +37,38 @@ std::vector<std::uint32_t> exact_duplicate_map(const std::vector<Vec3>& v) {
   return rep;
 }
 
+namespace {
+
+// The mesh welded at exactly equal vertices and compacted: one vertex per group (the group's
+// lowest input index, in increasing order: source[k] is the input index of vertex k), facets
+// remapped; x and y swapped when asked. The order of the kept vertices is the input's, so
+// anything sorted by vertex index sorts the same as over the welded input.
+TriangleMesh welded_compact(const TriangleMesh& input, bool swap_xy,
+                            std::vector<std::uint32_t>& source) {
+  const std::vector<std::uint32_t> rep = exact_duplicate_map(input.vertices);
+  std::vector<std::uint32_t> slot(rep.size());
+  source.clear();
+  for (std::uint32_t i = 0; i < rep.size(); ++i)
+    if (rep[i] == i) {
+      slot[i] = std::uint32_t(source.size());
+      source.push_back(i);
+    }
+  TriangleMesh mesh;
+  mesh.vertices.resize(source.size());
+  par::for_each(source.size(), 4096, [&](std::size_t k) {
+    const Vec3& v = input.vertices[source[k]];
+    mesh.vertices[k] = swap_xy ? Vec3(v.y(), v.x(), v.z()) : v;
+  });
+  mesh.facets.resize(input.facets.size());
+  par::for_each(input.facets.size(), 16384, [&](std::size_t i) {
+    const auto& f = input.facets[i];
+    mesh.facets[i] = {slot[rep[f[0]]], slot[rep[f[1]]], slot[rep[f[2]]]};
+  });
+  return mesh;
+}
+
+}  // namespace
+
 ConditionedMesh condition_for_slicing(const TriangleMesh& input) {
   TriangleMesh mesh;
   mesh.vertices = input.vertices;
@@ -54,22 +86,9 @@ ConditionedMesh condition_for_slicing(const TriangleMesh& input) {
 
 OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double radius,
                                               bool swap_xy, Coplanar coplanar) {
-  // Welded copy (facets remapped to the first of exactly equal vertices), x and y swapped
-  // when asked.
-  TriangleMesh mesh;
-  mesh.vertices.resize(input.vertices.size());
-  par::for_each(input.vertices.size(), 4096, [&](std::size_t i) {
-    const Vec3& v = input.vertices[i];
-    mesh.vertices[i] = swap_xy ? Vec3(v.y(), v.x(), v.z()) : v;
-  });
-  const std::vector<std::uint32_t> rep = exact_duplicate_map(input.vertices);
-  mesh.facets.resize(input.facets.size());
-  par::for_each(input.facets.size(), 16384, [&](std::size_t i) {
-    const auto& f = input.facets[i];
-    mesh.facets[i] = {rep[f[0]], rep[f[1]], rep[f[2]]};
-  });
   OffsetElements el;
   el.radius = radius;
+  const TriangleMesh mesh = welded_compact(input, swap_xy, el.point_source);
   el.points = mesh.vertices;
 
   // Facets: count per chunk, scan, fill.
@@ -132,11 +151,15 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
 ElementRef element_ref(const OffsetElements& el, std::uint32_t e) {
   ElementRef r;
   if (e >= el.element_count()) return r;  // kNoElement: the floor
+  auto mesh_vertex = [&](std::uint32_t point) {
+    return el.point_source.empty() ? point : el.point_source[point];
+  };
   if (e < el.facet_count()) return {0, el.facet_source[e], -1};
   e -= std::uint32_t(el.facet_count());
-  if (e < el.edge_count()) return {1, el.edge_vertices[e][0], el.edge_vertices[e][1]};
+  if (e < el.edge_count())
+    return {1, mesh_vertex(el.edge_vertices[e][0]), mesh_vertex(el.edge_vertices[e][1])};
   e -= std::uint32_t(el.edge_count());
-  return {2, el.vertex_source[e], -1};
+  return {2, mesh_vertex(el.vertex_source[e]), -1};
 }
 
 std::uint8_t contact_code(const OffsetElements& el, std::uint32_t e) {
@@ -150,8 +173,7 @@ std::uint8_t contact_code(const OffsetElements& el, std::uint32_t e) {
   return std::uint8_t(k);
 }
 
-OffsetElements mirror_xy(const OffsetElements& in) {
-  OffsetElements el = in;
+OffsetElements mirror_xy(OffsetElements el) {
   auto swap = [](Vec3& v) { v = Vec3(v.y(), v.x(), v.z()); };
   par::for_each(el.points.size(), 16384, [&](std::size_t i) { swap(el.points[i]); });
   par::for_each(el.facet_tri.size(), 16384, [&](std::size_t i) {
@@ -192,9 +214,10 @@ void element_extent(const OffsetElements& el, std::uint32_t id, int axis, double
 
 namespace {
 
-// element_extent, padded over element_y_reach's own rounding: contains the y reach.
-void y_reach_bound(const OffsetElements& el, std::uint32_t id, double& lo, double& hi) {
-  element_extent(el, id, 1, lo, hi);
+// element_extent, padded over element_y_reach's own rounding: contains the reach along the
+// axis (what element_y_reach gives for y).
+void reach_bound(const OffsetElements& el, std::uint32_t id, int axis, double& lo, double& hi) {
+  element_extent(el, id, axis, lo, hi);
   const double pad = 2 * tol::kReachPad * el.radius;
   lo -= pad;
   hi += pad;
@@ -206,7 +229,57 @@ bool meets_any(double lo, double hi, std::span<const double> at) {
   return false;
 }
 
+// Appends src[i] for the kept i in [0, n) (an array the build left empty stays empty).
+template <class T>
+void append_kept(std::vector<T>& dst, const std::vector<T>& src, const std::uint8_t* keep,
+                 std::size_t n) {
+  if (src.size() != n) return;
+  for (std::size_t i = 0; i < n; ++i)
+    if (keep[i]) dst.push_back(src[i]);
+}
+
 }  // namespace
+
+OffsetElements elements_near_planes(const OffsetElements& el, int axis,
+                                    std::span<const double> at) {
+  const std::size_t nf = el.facet_count(), ne = el.edge_count(), nv = el.vertex_count();
+  std::vector<std::uint8_t> keep(el.element_count());
+  par::for_each(keep.size(), 16384, [&](std::size_t id) {
+    double lo, hi;
+    reach_bound(el, std::uint32_t(id), axis, lo, hi);
+    keep[id] = meets_any(lo, hi, at);
+  });
+  OffsetElements out;
+  out.radius = el.radius;
+  out.points = el.points;
+  out.point_source = el.point_source;
+  const std::uint8_t *kf = keep.data(), *ke = kf + nf, *kv = ke + ne;
+  append_kept(out.facet_tri, el.facet_tri, kf, nf);
+  append_kept(out.facet_normal, el.facet_normal, kf, nf);
+  append_kept(out.facet_source, el.facet_source, kf, nf);
+  append_kept(out.facet_vertices, el.facet_vertices, kf, nf);
+  append_kept(out.facet_vertical, el.facet_vertical, kf, nf);
+  append_kept(out.edge_vertices, el.edge_vertices, ke, ne);
+  append_kept(out.edge_kind, el.edge_kind, ke, ne);
+  append_kept(out.edge_facet_count, el.edge_facet_count, ke, ne);
+  append_kept(out.edge_reachable, el.edge_reachable, ke, ne);
+  append_kept(out.edge_wedge, el.edge_wedge, ke, ne);
+  append_kept(out.edge_flat, el.edge_flat, ke, ne);
+  append_kept(out.vertex_source, el.vertex_source, kv, nv);
+  append_kept(out.vertex_reachable, el.vertex_reachable, kv, nv);
+  append_kept(out.vertex_flat, el.vertex_flat, kv, nv);
+  if (el.ring_offsets.size() == nv + 1) {
+    out.ring_offsets.push_back(0);
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (!kv[v]) continue;
+      out.ring.insert(out.ring.end(), el.ring.begin() + el.ring_offsets[v],
+                      el.ring.begin() + el.ring_offsets[v + 1]);
+      out.ring_offsets.push_back(std::uint32_t(out.ring.size()));
+    }
+  }
+  return out;
+}
+
 
 PlaneIndex build_plane_index(const OffsetElements& el, std::span<const double> only_at) {
   const std::size_t n = el.element_count();
@@ -215,7 +288,7 @@ PlaneIndex build_plane_index(const OffsetElements& el, std::span<const double> o
   par::for_each(n, 16384, [&](std::size_t id) {
     double l, h;
     if (!only_at.empty() && id % sample != 0) {
-      y_reach_bound(el, std::uint32_t(id), l, h);
+      reach_bound(el, std::uint32_t(id), 1, l, h);
       if (!meets_any(l, h, only_at)) return;
     }
     if (element_y_reach(el, std::uint32_t(id), l, h)) {

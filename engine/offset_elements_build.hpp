@@ -34,6 +34,9 @@ ConditionedMesh condition_for_slicing(const TriangleMesh& mesh);
 // at exactly equal vertices (facets refer to the lowest index of each group: an STL soup
 // becomes connected, so its edges are classified and its duplicates vanish), built with
 // count/scan/fill over chunks of facets, parallel sorts and parallel edge classification.
+// Only the kept vertex of each group is a point (an STL soup keeps one in six):
+// OffsetElements::point_source names its mesh vertex, and element_ref() reports mesh
+// vertices; element ids and their order are those of the welded mesh.
 // swap_xy: build them for the mesh with x and y exchanged (the frame of planes x = const);
 // element ids are the same either way. coplanar: as for build_offset_elements.
 OffsetElements build_offset_elements_parallel(const TriangleMesh& mesh, double radius,
@@ -41,8 +44,16 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& mesh, double r
 
 // The same elements with x and y exchanged in every position and direction (a mirror: the
 // edge wedges, rings and kinds are unchanged), i.e. the elements of the swapped mesh without
-// building them again.
-OffsetElements mirror_xy(const OffsetElements& el);
+// building them again. Pass an rvalue to mirror in place.
+OffsetElements mirror_xy(OffsetElements el);
+
+// The elements of el whose extent along the axis (0 x, 1 y: element_extent, padded like the
+// plane index's bound) meets one of the planes at `at` across it, with the points and rings
+// they use: what slices those planes, for a family scanned only along its two side planes. The kept
+// elements stay in id order (their new ids are increasing), so sorts and ties by id order
+// them as before, and element_ref() names the same mesh elements.
+OffsetElements elements_near_planes(const OffsetElements& el, int axis,
+                                    std::span<const double> at);
 
 // The extent of every element across the planes (y) that its trimmed pieces can reach
 // (element_y_reach: an offset triangle's y range; an edge's or vertex's y range grown by R

@@ -158,9 +158,17 @@ ScanElements build_scan_elements(const TriangleMesh& mesh, double radius,
                                  const std::array<std::vector<double>, 2>& only_at) {
   Stopwatch clock;
   ScanElements se;
-  se.el[0] = build_offset_elements_parallel(mesh, radius, false);
-  if (se.el[0].facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
-  se.el[1] = mirror_xy(se.el[0]);
+  OffsetElements el = build_offset_elements_parallel(mesh, radius, false);
+  if (el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
+  // A family sliced only along the other's side planes (only_at) keeps just the elements
+  // near them.
+  if (!only_at[0].empty()) {
+    se.el[0] = elements_near_planes(el, 1, only_at[0]);
+    se.el[1] = mirror_xy(std::move(el));
+  } else {
+    se.el[1] = mirror_xy(only_at[1].empty() ? el : elements_near_planes(el, 0, only_at[1]));
+    se.el[0] = std::move(el);
+  }
   par::overlap([&] { se.index[0] = build_plane_index(se.el[0], only_at[0]); },
                [&] { se.index[1] = build_plane_index(se.el[1], only_at[1]); });
   se.only_at = only_at;
@@ -213,9 +221,10 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
   ScanStats st;
   const std::array<Family, 2> fam = {family(se, 0), family(se, 1)};
   st.elements_s = se.build_s;
-  st.facets = se.el[0].facet_count();
-  st.edges = se.el[0].edge_count();
-  st.vertices = se.el[0].vertex_count();
+  const OffsetElements& all = se.only_at[0].empty() ? se.el[0] : se.el[1];  // not a part
+  st.facets = all.facet_count();
+  st.edges = all.edge_count();
+  st.vertices = all.vertex_count();
   st.facets_degenerate = se.mesh_facets - st.facets;
 
   const std::array<double, 4> rect = scan_rect(se.box, p);

@@ -58,6 +58,10 @@ struct OffsetElements {
 
   // Positions of the mesh vertices (a copy of mesh.vertices, mm); edges and spheres index it.
   std::vector<Vec3> points;
+  // The mesh vertex behind each point when the builder kept only some vertices, in
+  // increasing order (engine/offset_elements_build.hpp: one per group of exactly equal
+  // vertices); empty when points are the mesh's vertices themselves.
+  std::vector<std::uint32_t> point_source;
 
   // Facets, F of them. facet_tri holds the offset triangle's vertices (source + R n, mm);
   // facet_normal the unit normal with n.z >= 0; facet_source the index into mesh.facets.

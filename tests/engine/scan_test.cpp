@@ -9,6 +9,7 @@
 #include <map>
 #include <filesystem>
 #include <random>
+#include <tuple>
 
 #include "engine/drop_index.hpp"
 #include "engine/offset_elements_build.hpp"
@@ -176,6 +177,17 @@ TEST(Scan, OneAndTwoThreadsGiveIdenticalOutput) {
     EXPECT_EQ(a.junctions[i].position, b.junctions[i].position);
 }
 
+// The mesh as an STL reader gives it: three new vertices per facet.
+TriangleMesh as_soup(const TriangleMesh& mesh) {
+  TriangleMesh soup;
+  for (const auto& f : mesh.facets) {
+    const auto n = std::uint32_t(soup.vertices.size());
+    for (const std::uint32_t v : f) soup.vertices.push_back(mesh.vertices[v]);
+    soup.facets.push_back({n, n + 1, n + 2});
+  }
+  return soup;
+}
+
 // An index restricted to a few planes answers queries there exactly like the full index
 // (same elements, same order) and holds only a small part of the elements.
 TEST(Scan, RestrictedPlaneIndexAnswersLikeTheFullOneAtItsPlanes) {
@@ -201,7 +213,7 @@ TEST(Scan, RestrictedPlaneIndexAnswersLikeTheFullOneAtItsPlanes) {
 // A scan of one family slices the other only along its two side planes (restricted index):
 // the same output as with both families' full indexes, with the sides through the part.
 TEST(Scan, OneFamilyScanEqualsTheScanWithFullIndexes) {
-  const TriangleMesh mesh = load("fandisk");
+  const TriangleMesh mesh = as_soup(load("fandisk"));  // as read from STL: welded by the build
   const Aabb3 box = bounding_box(mesh);
   for (const ScanFamilies fam : {ScanFamilies::kX, ScanFamilies::kY}) {
     ScanParams p;
@@ -218,12 +230,29 @@ TEST(Scan, OneFamilyScanEqualsTheScanWithFullIndexes) {
         [&](const ScanChunk& ch) {
           b.cl.append(ch.cl);
           b.segments.insert(b.segments.end(), ch.segments.begin(), ch.segments.end());
+          b.junctions.insert(b.junctions.end(), ch.junctions.begin(), ch.junctions.end());
         },
         control);
     EXPECT_GT(a.cl.path_kinds.size(), 10u);
     EXPECT_EQ(a.cl.xyz, b.cl.xyz);
     EXPECT_EQ(a.cl.path_kinds, b.cl.path_kinds);
-    EXPECT_EQ(a.segments.size(), b.segments.size());
+    ASSERT_EQ(a.segments.size(), b.segments.size());
+    for (std::size_t i = 0; i < a.segments.size(); ++i) {
+      const ScanElementRef &ea = a.segments[i].element, &eb = b.segments[i].element;
+      EXPECT_EQ(std::tie(ea.kind, ea.a, ea.b), std::tie(eb.kind, eb.a, eb.b)) << "segment " << i;
+    }
+    ASSERT_EQ(a.junctions.size(), b.junctions.size());
+    for (std::size_t i = 0; i < a.junctions.size(); ++i) {
+      const ScanElementRef &ea = a.junctions[i].element1, &eb = b.junctions[i].element1;
+      EXPECT_EQ(std::tie(ea.kind, ea.a, ea.b), std::tie(eb.kind, eb.a, eb.b)) << "junction " << i;
+    }
+    // The sides are sliced with the elements near them only.
+    const ScanElements part = build_scan_elements(
+        mesh, 2, fam == ScanFamilies::kX ? std::array<std::vector<double>, 2>{{{}, {p.rect->at(0)}}}
+                                         : std::array<std::vector<double>, 2>{{{p.rect->at(1)}, {}}});
+    const int side = fam == ScanFamilies::kX ? 1 : 0;
+    EXPECT_LT(part.el[std::size_t(side)].element_count() * 3, full.el[0].element_count());
+    EXPECT_EQ(part.el[std::size_t(1 - side)].element_count(), full.el[0].element_count());
     // Elements built for other planes are refused.
     ScanParams both = p;
     both.families = ScanFamilies::kBoth;
@@ -255,6 +284,35 @@ TEST(Scan, ExactDuplicateMapSendsEachVertexToItsFirstCopy) {
   }
   EXPECT_LT(first.size(), v.size() / 2);  // many repeats
   EXPECT_EQ(exact_duplicate_map(v), want);
+}
+
+// The parallel build keeps one point per group of equal vertices (an STL soup: one in six)
+// and still gives the sequential reference's elements for the welded mesh, element for
+// element, with element_ref() naming the same mesh vertices.
+TEST(Scan, CompactParallelElementsEqualTheReferenceOnTheWeldedSoup) {
+  const TriangleMesh soup = as_soup(load("fandisk"));
+  TriangleMesh welded = soup;
+  const std::vector<std::uint32_t> rep = exact_duplicate_map(soup.vertices);
+  for (auto& f : welded.facets)
+    for (std::uint32_t& v : f) v = rep[v];
+  const OffsetElements want = build_offset_elements(welded, 2.5);
+  const OffsetElements got = build_offset_elements_parallel(soup, 2.5, false);
+  EXPECT_EQ(want.points.size(), soup.vertices.size());
+  EXPECT_LT(got.points.size() * 5, soup.vertices.size());
+  ASSERT_EQ(got.point_source.size(), got.points.size());
+  for (std::size_t k = 0; k < got.points.size(); ++k)
+    ASSERT_EQ(got.points[k], soup.vertices[got.point_source[k]]);
+  ASSERT_EQ(got.facet_count(), want.facet_count());
+  ASSERT_EQ(got.edge_count(), want.edge_count());
+  ASSERT_EQ(got.vertex_count(), want.vertex_count());
+  EXPECT_EQ(got.facet_tri, want.facet_tri);
+  EXPECT_EQ(got.edge_kind, want.edge_kind);
+  EXPECT_EQ(got.edge_wedge, want.edge_wedge);
+  EXPECT_EQ(got.vertex_reachable, want.vertex_reachable);
+  for (std::uint32_t id = 0; id < got.element_count(); ++id) {
+    const ElementRef a = element_ref(got, id), b = element_ref(want, id);
+    ASSERT_EQ(std::tie(a.kind, a.a, a.b), std::tie(b.kind, b.a, b.b)) << "element " << id;
+  }
 }
 
 TEST(Scan, RejectsBadInput) {
