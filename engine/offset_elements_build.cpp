@@ -102,7 +102,6 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
   });
   par::exclusive_scan(std::span<const std::uint32_t>(counts), std::span<std::uint32_t>(offsets));
   const std::uint32_t nf = offsets[chunks];
-  el.facet_tri.resize(nf);
   el.facet_normal.resize(nf);
   el.facet_source.resize(nf);
   el.facet_vertices.resize(nf);
@@ -176,10 +175,7 @@ std::uint8_t contact_code(const OffsetElements& el, std::uint32_t e) {
 OffsetElements mirror_xy(OffsetElements el) {
   auto swap = [](Vec3& v) { v = Vec3(v.y(), v.x(), v.z()); };
   par::for_each(el.points.size(), 16384, [&](std::size_t i) { swap(el.points[i]); });
-  par::for_each(el.facet_tri.size(), 16384, [&](std::size_t i) {
-    for (Vec3& p : el.facet_tri[i]) swap(p);
-    swap(el.facet_normal[i]);
-  });
+  par::for_each(el.facet_normal.size(), 16384, [&](std::size_t i) { swap(el.facet_normal[i]); });
   par::for_each(el.edge_wedge.size(), 16384, [&](std::size_t i) {
     for (Vec3& w : el.edge_wedge[i]) swap(w);
   });
@@ -198,7 +194,7 @@ void element_extent(const OffsetElements& el, std::uint32_t id, int axis, double
                     double& hi) {
   const std::size_t nf = el.facet_count(), ne = el.edge_count();
   if (id < nf) {
-    const auto& t = el.facet_tri[id];
+    const auto t = el.offset_tri(id);
     lo = std::min({t[0][axis], t[1][axis], t[2][axis]});
     hi = std::max({t[0][axis], t[1][axis], t[2][axis]});
   } else if (id < nf + ne) {
@@ -254,7 +250,6 @@ OffsetElements elements_near_planes(const OffsetElements& el, int axis,
   out.points = el.points;
   out.point_source = el.point_source;
   const std::uint8_t *kf = keep.data(), *ke = kf + nf, *kv = ke + ne;
-  append_kept(out.facet_tri, el.facet_tri, kf, nf);
   append_kept(out.facet_normal, el.facet_normal, kf, nf);
   append_kept(out.facet_source, el.facet_source, kf, nf);
   append_kept(out.facet_vertices, el.facet_vertices, kf, nf);

@@ -57,8 +57,6 @@ void fill_offset_facets(const TriangleMesh& mesh, double radius, std::uint32_t b
     const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];
     Vec3 n;
     if (!upward_unit_normal(a, b, c, n)) continue;
-    const Vec3 shift = radius * n;
-    out.facet_tri[slot] = {a + shift, b + shift, c + shift};
     out.facet_normal[slot] = n;
     out.facet_source[slot] = i;
     out.facet_vertices[slot] = f;
@@ -158,7 +156,7 @@ bool element_y_reach(const OffsetElements& el, std::uint32_t id, double& lo, dou
   const double R = el.radius;
   const std::size_t nf = el.facet_count(), ne = el.edge_count();
   if (id < nf) {
-    const auto& t = el.facet_tri[id];
+    const auto t = el.offset_tri(id);
     lo = std::min({t[0].y(), t[1].y(), t[2].y()});
     hi = std::max({t[0].y(), t[1].y(), t[2].y()});
     return true;
@@ -372,13 +370,7 @@ std::size_t share_coplanar_offsets(std::span<const std::uint32_t> key_facet,
           continue;
         region[g] = seed;
         stack.push_back(g);
-        if (!vertical && m != n) {
-          el.facet_normal[g] = n;
-          const Vec3 shift = el.radius * n;
-          const auto& fv = el.facet_vertices[g];
-          el.facet_tri[g] = {el.points[fv[0]] + shift, el.points[fv[1]] + shift,
-                             el.points[fv[2]] + shift};
-        }
+        if (!vertical && m != n) el.facet_normal[g] = n;  // offset_tri() follows
       }
     }
   }
@@ -401,7 +393,6 @@ OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius,
   el.points = mesh.vertices;
   const auto nf_mesh = std::uint32_t(mesh.facets.size());
   const std::uint32_t nf = count_offset_facets(mesh, 0, nf_mesh);
-  el.facet_tri.resize(nf);
   el.facet_normal.resize(nf);
   el.facet_source.resize(nf);
   el.facet_vertices.resize(nf);

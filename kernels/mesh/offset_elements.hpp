@@ -63,9 +63,9 @@ struct OffsetElements {
   // vertices); empty when points are the mesh's vertices themselves.
   std::vector<std::uint32_t> point_source;
 
-  // Facets, F of them. facet_tri holds the offset triangle's vertices (source + R n, mm);
-  // facet_normal the unit normal with n.z >= 0; facet_source the index into mesh.facets.
-  std::vector<std::array<Vec3, 3>> facet_tri;
+  // Facets, F of them. facet_normal: the unit normal with n.z >= 0; facet_source: the index
+  // into mesh.facets; offset_tri(): the offset triangle's vertices (source + R n, mm),
+  // computed when asked (storing them cost 72 bytes per facet).
   std::vector<Vec3> facet_normal;
   std::vector<std::uint32_t> facet_source;
   std::vector<std::array<std::uint32_t, 3>> facet_vertices;  // the source facet's indices
@@ -100,7 +100,13 @@ struct OffsetElements {
   std::vector<std::uint32_t> ring_offsets, ring;
   std::vector<std::uint8_t> vertex_flat;
 
-  std::size_t facet_count() const { return facet_tri.size(); }
+  std::array<Vec3, 3> offset_tri(std::size_t f) const {
+    const Vec3 shift = radius * facet_normal[f];
+    const auto& v = facet_vertices[f];
+    return {points[v[0]] + shift, points[v[1]] + shift, points[v[2]] + shift};
+  }
+
+  std::size_t facet_count() const { return facet_normal.size(); }
   std::size_t edge_count() const { return edge_vertices.size(); }
   std::size_t vertex_count() const { return vertex_source.size(); }
   std::size_t element_count() const { return facet_count() + edge_count() + vertex_count(); }

@@ -58,7 +58,7 @@ double sphere_centre_z(const SlicePiece& pc, double x) {
 void slice_facet(const OffsetElements& el, std::uint32_t f, double y0,
                  std::vector<SlicePiece>& out) {
   if (el.facet_vertical[f]) return;
-  const auto& t = el.facet_tri[f];
+  const auto t = el.offset_tri(f);
   double lo = INFINITY, hi = -INFINITY;
   for (int k = 0; k < 3; ++k) {
     const Vec3 &a = t[k], &b = t[(k + 1) % 3];

@@ -32,7 +32,7 @@ bool element_box(const OffsetElements& el, std::uint32_t id, double* b, double& 
   reach = -INFINITY;
   if (id < nf) {
     if (el.facet_vertical[id]) return false;
-    const auto& t = el.facet_tri[id];
+    const auto t = el.offset_tri(id);
     reach = std::max({t[0].z(), t[1].z(), t[2].z()});
     for (const Vec3& p : t) put(p);
     return true;
@@ -351,7 +351,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   auto mark_known = [&](Region& g) {
     double low = INFINITY;
     if (g.kind == RegionKind::kFacet) {
-      for (const Vec3& v : el.facet_tri[g.index]) low = std::min(low, v.z());
+      for (const Vec3& v : el.offset_tri(g.index)) low = std::min(low, v.z());
     } else if (g.kind == RegionKind::kEdge) {
       low = g.a.z();  // the lower end
     } else {

@@ -298,7 +298,7 @@ namespace {
 int element_hull(const OffsetElements& el, std::uint32_t id, Vec2* p, double& r) {
   int n = 0;
   if (id < el.facet_count()) {
-    for (const Vec3& v : el.facet_tri[id]) p[n++] = Vec2(v.x(), v.y());
+    for (const Vec3& v : el.offset_tri(id)) p[n++] = Vec2(v.x(), v.y());
     r = 0;
   } else {
     for (std::uint32_t v : el.edge_vertices[id - el.facet_count()])

@@ -33,7 +33,7 @@ bool any_changed_region(const OffsetElements& el, const std::vector<std::uint32_
   for (const std::uint32_t id : cand) {
     if (id < nf) {
       double low = INFINITY;
-      for (const Vec3& v : el.facet_tri[id]) low = std::min(low, v.z());
+      for (const Vec3& v : el.offset_tri(id)) low = std::min(low, v.z());
       if (changes(id, low)) return true;
     } else if (id < nf + ne) {
       const auto& ev = el.edge_vertices[id - nf];

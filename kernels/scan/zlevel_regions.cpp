@@ -60,7 +60,7 @@ Vec2 clip_point(const Vec3& p, const Vec3& q, double zc) {
 
 bool build_facet(const OffsetElements& el, std::uint32_t f, const Level& lv, Region& g) {
   if (el.facet_vertical[f]) return false;
-  const auto& t = el.facet_tri[f];
+  const auto t = el.offset_tri(f);
   const double zc = lv.zc;
   if (std::max({t[0].z(), t[1].z(), t[2].z()}) < zc) return false;
   const Vec2 p[3] = {xy(t[0]), xy(t[1]), xy(t[2])};
@@ -213,7 +213,7 @@ Curve line_curve(const Region& g, std::uint32_t gi, const Vec2& a, const Vec2& b
 
 void facet_curves(const OffsetElements& el, const Region& g, std::uint32_t gi, const Level& lv,
                   std::vector<Curve>& curves, std::vector<Joint>& joints) {
-  const auto& t = el.facet_tri[g.index];
+  const auto t = el.offset_tri(g.index);
   const auto& fv = el.facet_vertices[g.index];
   const double zc = lv.zc;
   const Vec2 p[3] = {xy(t[0]), xy(t[1]), xy(t[2])};

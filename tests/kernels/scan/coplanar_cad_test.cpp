@@ -221,7 +221,7 @@ void check_pocket(const Pose& pose, int n, int k, double R, std::mt19937_64& rng
       const int g = pk.face[f];
       if (el.facet_vertical[f]) {
         EXPECT_TRUE(el.facet_normal[f] == kept.facet_normal[f]) << name << " facet " << f;
-        EXPECT_TRUE(el.facet_tri[f] == kept.facet_tri[f]) << name << " facet " << f;
+        EXPECT_TRUE(el.offset_tri(f) == kept.offset_tri(f)) << name << " facet " << f;
         continue;
       }
       if (face_normal[g].isZero()) face_normal[g] = el.facet_normal[f];

@@ -161,13 +161,13 @@ TEST(Coplanar, SubdividedTerrainDropsInnerElements) {
       normals_rounded_apart += !(kept.facet_normal[c] == n);
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t v = merged.facet_vertices[c][k];
-        const auto [it, fresh] = corner.emplace(v, merged.facet_tri[c][k]);
+        const auto [it, fresh] = corner.emplace(v, merged.offset_tri(c)[k]);
         if (!fresh) {
-          EXPECT_TRUE(it->second == merged.facet_tri[c][k])
+          EXPECT_TRUE(it->second == merged.offset_tri(c)[k])
               << "offset corner of vertex " << v << " in child " << c;
         }
-        const auto [jt, fresh_kept] = corner_kept.emplace(v, kept.facet_tri[c][k]);
-        if (!fresh_kept) corners_apart_kept += !(jt->second == kept.facet_tri[c][k]);
+        const auto [jt, fresh_kept] = corner_kept.emplace(v, kept.offset_tri(c)[k]);
+        if (!fresh_kept) corners_apart_kept += !(jt->second == kept.offset_tri(c)[k]);
       }
     }
   }
@@ -231,7 +231,7 @@ void check_split_terrain(const Refined& r, double R, std::mt19937_64& rng) {
   for (int k = 0; k < 12; ++k) ys.push_back(y_of(r.edge_inner_vertices[pick_edge(rng)]));
   for (int k = 0; k < 6; ++k) ys.push_back(y_of(r.facet_inner_vertices[pick_inner(rng)]));
   for (int k = 0; k < 6; ++k) ys.push_back(y_of(std::uint32_t(pick_corner(rng))));
-  for (int k = 0; k < 12; ++k) ys.push_back(fine.facet_tri[pick_facet(rng)][k % 3].y());
+  for (int k = 0; k < 12; ++k) ys.push_back(fine.offset_tri(pick_facet(rng))[k % 3].y());
 
   Worst worst;
   int kinks = 0;

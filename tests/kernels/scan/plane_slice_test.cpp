@@ -101,7 +101,7 @@ TEST(OffsetElements, OpenSingleFacet) {
   // Offset triangle: source + R n, n upward.
   const Vec3 n = Vec3(0, -10, 100).normalized();
   EXPECT_LT((el.facet_normal[0] - n).norm(), 1e-15);
-  EXPECT_LT((el.facet_tri[0][1] - (Vec3(10, 0, 1) + 2 * n)).norm(), 1e-14);
+  EXPECT_LT((el.offset_tri(0)[1] - (Vec3(10, 0, 1) + 2 * n)).norm(), 1e-14);
 }
 
 TEST(OffsetElements, DownwardWindingGivesUpwardNormal) {
@@ -109,7 +109,7 @@ TEST(OffsetElements, DownwardWindingGivesUpwardNormal) {
   const OffsetElements el = build_offset_elements(mesh, 1);
   ASSERT_EQ(el.facet_count(), 1u);
   EXPECT_EQ(el.facet_normal[0], Vec3(0, 0, 1));
-  EXPECT_EQ(el.facet_tri[0][0], Vec3(0, 0, 1));
+  EXPECT_EQ(el.offset_tri(0)[0], Vec3(0, 0, 1));
 }
 
 TEST(OffsetElements, DegenerateFacetContributesNothing) {

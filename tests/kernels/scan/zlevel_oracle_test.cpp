@@ -114,7 +114,7 @@ TEST(ZLevel, CandidateOrderAndFilterDoNotMatter) {
     for (std::uint32_t id = 0; id < el.element_count(); ++id) {
       double top;
       if (id < el.facet_count()) {
-        const auto& t = el.facet_tri[id];
+        const auto t = el.offset_tri(id);
         top = std::max({t[0].z(), t[1].z(), t[2].z()});
       } else if (id < el.facet_count() + el.edge_count()) {
         const auto& e = el.edge_vertices[id - el.facet_count()];
