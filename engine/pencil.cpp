@@ -89,9 +89,41 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   PencilResult res;
   PencilStats& st = res.stats;
   const double min_angle = p.min_angle_deg * std::numbers::pi / 180;
+  const Aabb3 box = bounding_box(mesh);
+  const double floor_z = p.floor_z.value_or(box.lo.z());
+  // Candidates from z-levels first (appended after the drive planes' below): their elements
+  // are freed before the drive planes' are built, so the two never take memory at once.
+  std::vector<PencilCandidate> zcand;
+  std::vector<std::array<ElementRef, 2>> zrefs;
+  if (p.step_down > 0) {
+    Stopwatch clock;
+    ZLevelOpParams zp;
+    zp.step_down = p.step_down;
+    zp.tolerance = p.tolerance;
+    zp.condition = false;  // run_pencil conditioned the mesh
+    const double top = box.hi.z();
+    const ZLevelOpStats zs = run_zlevel(
+        mesh, cutter, zp,
+        [&](const ZLevelChunk& ch) {
+          for (const ZLevelJunctionRecord& j : ch.junctions) {
+            if (j.kind != std::uint8_t(JunctionKind::kSharpConcave)) continue;
+            PencilCandidate c;
+            c.p = Vec3(j.position[0], j.position[1], j.position[2]);
+            c.b1 = Vec3(j.b1[0], j.b1[1], j.b1[2]);
+            c.b2 = Vec3(j.b2[0], j.b2[1], j.b2[2]);
+            c.family = 2;
+            c.layer = std::uint32_t(std::lround((top - c.p.z()) / p.step_down) - 1);
+            zcand.push_back(c);
+            zrefs.push_back({j.element1, j.element2});
+          }
+        },
+        control);
+    st.levels = zs.levels;
+    st.zlevel_open_chains = zs.open_chains;
+    st.zlevel_s = clock.seconds();
+  }
   const ScanElements se = build_scan_elements(mesh, cutter.radius);
   st.elements_s = se.build_s;
-  const double floor_z = p.floor_z.value_or(se.box.lo.z());
 
   // 1. Candidates from both drive-plane families.
   std::vector<PencilCandidate> cand;
@@ -131,34 +163,8 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     }
     st.scan_s = clock.seconds();
   }
-  // ... and from z-levels.
-  if (p.step_down > 0) {
-    Stopwatch clock;
-    ZLevelOpParams zp;
-    zp.step_down = p.step_down;
-    zp.tolerance = p.tolerance;
-    zp.condition = false;  // run_pencil conditioned the mesh
-    const double top = se.box.hi.z();
-    const ZLevelOpStats zs = run_zlevel(
-        mesh, cutter, zp,
-        [&](const ZLevelChunk& ch) {
-          for (const ZLevelJunctionRecord& j : ch.junctions) {
-            if (j.kind != std::uint8_t(JunctionKind::kSharpConcave)) continue;
-            PencilCandidate c;
-            c.p = Vec3(j.position[0], j.position[1], j.position[2]);
-            c.b1 = Vec3(j.b1[0], j.b1[1], j.b1[2]);
-            c.b2 = Vec3(j.b2[0], j.b2[1], j.b2[2]);
-            c.family = 2;
-            c.layer = std::uint32_t(std::lround((top - c.p.z()) / p.step_down) - 1);
-            cand.push_back(c);
-            cand_refs.push_back({j.element1, j.element2});
-          }
-        },
-        control);
-    st.levels = zs.levels;
-    st.zlevel_open_chains = zs.open_chains;
-    st.zlevel_s = clock.seconds();
-  }
+  cand.insert(cand.end(), zcand.begin(), zcand.end());
+  cand_refs.insert(cand_refs.end(), zrefs.begin(), zrefs.end());
   st.candidates = cand.size();
 
   // 2. Pencil points (both contacts within the tolerance of the part) and the family that
