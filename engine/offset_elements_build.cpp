@@ -109,7 +109,7 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
   std::vector<std::uint64_t> keys(3 * std::size_t(nf));
   par::for_each(chunks, 1, [&](std::size_t c) {
     const auto b = std::uint32_t(c * kChunk), e = std::min(nf_mesh, b + kChunk);
-    fill_offset_facets(mesh, radius, b, e, offsets[c], el, keys);
+    fill_offset_facets(mesh, b, e, offsets[c], el, keys);
   });
 
   // Unique edges: half-edges sorted by (key, slot), as the reference does.

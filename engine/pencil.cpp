@@ -300,7 +300,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
           // On the CL surface: the drop-cutter reaches it there (upper semicontinuous: at a
           // wall's foot it reports the wall's top) and the point is not inside the part.
           const double top = std::max(floor_z, index.query(q.x(), q.y()).tip_z);
-          if (top < zm - kSweepSlack || !reachable(part, q)) continue;
+          if (top < zm - tol::kSweepSlack || !reachable(part, q)) continue;
           const Vec3 centre = q + Vec3(0, 0, R);
           PencilCandidate c = a;
           c.p = q;
@@ -320,7 +320,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
           if (!(std::abs(t.z()) > 0.5)) continue;
           const Vec3 q = e->p + t * ((zm - e->p.z()) / t.z());
           const double top = std::max(floor_z, index.query(q.x(), q.y()).tip_z);
-          if ((q - e->p).norm() > (b.p - a.p).norm() || top < zm - kSweepSlack ||
+          if ((q - e->p).norm() > (b.p - a.p).norm() || top < zm - tol::kSweepSlack ||
               !reachable(part, q))
             continue;
           PencilCandidate c = *e;

@@ -8,7 +8,7 @@ namespace ncpath {
 double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
   // On or above at q itself: no gouge whatever the neighbours say (one query, the common case).
   double d = std::max(floor_z, index.query(q.x(), q.y()).tip_z) - q.z();
-  if (d <= kSurfaceSlack) return std::min(d, 0.0);
+  if (d <= tol::kSurfaceSlack) return std::min(d, 0.0);
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy) {
       const double z = index.query(q.x() + 1e-6 * dx, q.y() + 1e-6 * dy).tip_z;
@@ -18,12 +18,12 @@ double surface_deficit(const DropIndex& index, double floor_z, const Vec3& q) {
 }
 
 bool reachable(const PartProbe& part, const Vec3& q) {
-  if (q.z() < part.floor_z - kReachSlack) return false;
-  if (part.index.query(q.x(), q.y()).tip_z - q.z() <= kSurfaceSlack) return true;
+  if (q.z() < part.floor_z - tol::kReachSlack) return false;
+  if (part.index.query(q.x(), q.y()).tip_z - q.z() <= tol::kSurfaceSlack) return true;
   const Vec3 centre = q + Vec3(0, 0, part.radius);
-  const double r = part.radius - kReachSlack;
+  const double r = part.radius - tol::kReachSlack;
   if (part.distance.closest(centre, part.radius).distance <= r) return false;  // in the part
-  const double rise = part.top_z - q.z() + kReachSlack;
+  const double rise = part.top_z - q.z() + tol::kReachSlack;
   return !part.distance.march(centre, Vec3::UnitZ(), r, rise);
 }
 
@@ -38,7 +38,7 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
       raised[i] = true;
     }
   const Vec3 up(0, 0, radius);
-  const double r = radius - kSweepSlack;
+  const double r = radius - tol::kSweepSlack;
   // Sweeps chord i; the lift it needs (0 when clear): the drop-cutter deficit where the ball
   // first touches, at least the ball's penetration there, plus the slack.
   auto sweep = [&](std::size_t i) {
@@ -53,11 +53,11 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
     const Vec3 tip = pts[i] + (pts[i + 1] - pts[i]) * (len > 0 ? *s / len : 0.0);
     const double d = std::max(surface_deficit(index, floor_z, tip),
                               radius - distance.closest(tip + up, radius).distance);
-    return std::max(d, kSweepSlack) + kSweepSlack;
+    return std::max(d, tol::kSweepSlack) + tol::kSweepSlack;
   };
   // The first contact is where the dip starts, not where it is deepest: a chord touching
   // again is lifted by at least twice its previous lift (a dip of depth h is cleared within
-  // log2(h / kSweepSlack) rounds, over-lifting by less than h). A chord whose lifts would
+  // log2(h / tol::kSweepSlack) rounds, over-lifting by less than h). A chord whose lifts would
   // add up to more than max_lift (a wall in the way, which lifting cannot clear) is left
   // alone and reported.
   std::vector<bool> check(n > 0 ? n - 1 : 0, true), stuck(check.size(), false);
@@ -78,7 +78,7 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
         const int m = std::max(2, int(std::ceil((b - a).norm() / spacing)));
         for (int j = 1; j < m && d <= max_lift; ++j)
           d = std::max(d, surface_deficit(index, floor_z, a + (b - a) * (double(j) / m)) +
-                              kSweepSlack);
+                              tol::kSweepSlack);
         sampled[i] = true;
       } else {
         d = std::max(d, 2 * last[i]);  // what is left between the samples: doubling

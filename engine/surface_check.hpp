@@ -8,15 +8,13 @@
 
 #include "engine/drop_index.hpp"
 #include "engine/mesh_distance.hpp"
+#include "kernels/geom/tolerance.hpp"  // tol::kSurfaceSlack, tol::kReachSlack, tol::kSweepSlack
 #include "kernels/geom/vec.hpp"
 
 namespace ncpath {
 
-// Dips of at most this much (mm) are rounding, not gouges: reported as 0.
-inline constexpr double kSurfaceSlack = 1e-9;
-
 // How far the tool tip at q is below the CL surface (mm, <= 0 when on or above it or less
-// than kSurfaceSlack below it: a point computed on the surface, e.g. an exact crease point,
+// than tol::kSurfaceSlack below it: a point computed on the surface, e.g. an exact crease point,
 // needs one query, not nine). The
 // drop-cutter height is only upper semicontinuous: at the foot of a wall it is the wall's
 // top although the tool there merely touches the wall (or, in a corner, both walls). A real
@@ -37,8 +35,8 @@ struct PartProbe {
 };
 
 // Whether the ball with its tip at q can be there, reached from above (exact): q is not below
-// floor_z, the ball at q is in the part by at most kReachSlack, and the ball swept straight
-// up from q to the part's top (radius - kReachSlack, MeshDistance::march) touches nothing,
+// floor_z, the ball at q is in the part by at most tol::kReachSlack, and the ball swept straight
+// up from q to the part's top (radius - tol::kReachSlack, MeshDistance::march) touches nothing,
 // so the shank's space is free. One drop-cutter query when q is on or above the CL surface.
 // Unlike surface_deficit's neighbours, it tells a ball touching a steep wall (reachable)
 // from one 1.8e-4 mm under a near-vertical wall's CL surface (not), which the fillet-cut of
@@ -46,7 +44,7 @@ struct PartProbe {
 bool reachable(const PartProbe& part, const Vec3& q);
 
 // The exact check: the ball (radius R) swept along every chord of the tool-tip polyline, by
-// MeshDistance::march with radius R - kSweepSlack, so a chord is accepted only if its ball
+// MeshDistance::march with radius R - tol::kSweepSlack, so a chord is accepted only if its ball
 // nowhere comes closer than that to the mesh (not just at samples: a crease bending sideways
 // between two samples dips in between). A chord that does is lifted at both ends: the first
 // time by the largest drop-cutter deficit at its samples (no farther apart than `spacing`;
@@ -57,12 +55,6 @@ bool reachable(const PartProbe& part, const Vec3& q);
 // lifted further. Points below floor_z are raised to it. Returns the number of points
 // raised; `touching` (when given) gets one flag per chord: still touching at the end
 // (callers must not cut such a chord).
-inline constexpr double kSweepSlack = 1e-7;
-// reachable(): how far a reachable ball below the drop-cutter height may be in the part:
-// rounding only. Beside a wall of slope a, a ball in the part by p is p / cos(a) below the CL
-// surface, and the verifier measures that vertical depth (anchor_dense: 1.5e-7 mm in the
-// part, 1.8e-4 mm deep).
-inline constexpr double kReachSlack = kSurfaceSlack;
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
                        double radius, double max_lift, double spacing,
                        std::vector<Vec3>& points, int rounds = 24,

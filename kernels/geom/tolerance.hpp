@@ -446,4 +446,20 @@ inline constexpr double kGougeResolution = 1e-9;
 // below, bisection otherwise); when hit, the returned lift still clears the triangle.
 inline constexpr int kLiftMaxSteps = 120;
 
+// mm. Clean-up operations (engine/surface_check.hpp): a tool tip at most this below the
+// drop-cutter surface is on it (rounding, not a gouge): surface_deficit reports 0.
+inline constexpr double kSurfaceSlack = 1e-9;
+
+// mm. reachable() (engine/surface_check.hpp): how far a reachable ball below the drop-cutter
+// height may be in the part: rounding only. Beside a wall of slope a, a ball in the part by p
+// is p / cos(a) below the CL surface, and the verifier measures that vertical depth
+// (anchor_dense: 1.5e-7 mm in the part, 1.8e-4 mm deep).
+inline constexpr double kReachSlack = kSurfaceSlack;
+
+// mm. lift_swept() (engine/surface_check.hpp) sweeps the ball of radius R - kSweepSlack along
+// each chord: a chord is accepted only if its ball nowhere comes closer than that to the mesh.
+// Also the height below the drop-cutter surface at which the pencil's crease points count as
+// on it.
+inline constexpr double kSweepSlack = 1e-7;
+
 }  // namespace ncpath::tol

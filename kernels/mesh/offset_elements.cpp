@@ -48,7 +48,7 @@ std::uint32_t count_offset_facets(const TriangleMesh& mesh, std::uint32_t begin,
   return count;
 }
 
-void fill_offset_facets(const TriangleMesh& mesh, double radius, std::uint32_t begin,
+void fill_offset_facets(const TriangleMesh& mesh, std::uint32_t begin,
                         std::uint32_t end, std::uint32_t first_slot, OffsetElements& out,
                         std::span<std::uint64_t> keys) {
   std::uint32_t slot = first_slot;
@@ -398,7 +398,7 @@ OffsetElements build_offset_elements(const TriangleMesh& mesh, double radius,
   el.facet_vertices.resize(nf);
   el.facet_vertical.resize(nf);
   std::vector<std::uint64_t> keys(3 * std::size_t(nf));
-  fill_offset_facets(mesh, radius, 0, nf_mesh, 0, el, keys);
+  fill_offset_facets(mesh, 0, nf_mesh, 0, el, keys);
 
   // Sort half-edges by (vertex pair, facet slot): ties keep slot order, so the result is
   // independent of how the engine chunks the sort.

@@ -152,8 +152,8 @@ std::uint32_t count_offset_facets(const TriangleMesh& mesh, std::uint32_t begin,
 // Writes the non-degenerate facets of mesh.facets[begin, end), in order, into slots
 // first_slot, first_slot + 1, ... of out's facet arrays (already sized by the caller to the
 // total count) and also writes their half-edge keys into keys[3 * slot + k]: (lo << 32 | hi)
-// vertex indices of edge k.
-void fill_offset_facets(const TriangleMesh& mesh, double radius, std::uint32_t begin,
+// vertex indices of edge k. Offset triangles come from out.radius (offset_tri()).
+void fill_offset_facets(const TriangleMesh& mesh, std::uint32_t begin,
                         std::uint32_t end, std::uint32_t first_slot, OffsetElements& out,
                         std::span<std::uint64_t> keys);
 

@@ -72,8 +72,9 @@ TEST(VerifyCli, GlyphAndBracketPocketsAreVerifiedClean) {
     // Level 1 runs along the walls: the smallest clearance is the one-sided margins, small.
     EXPECT_GE(stat(f, "pocket", "verify_min_clearance"), 0) << name;
     EXPECT_LT(stat(f, "pocket", "verify_min_clearance"), 0.1) << name;
-    if (stat(f, "pocket", "helix_entries") > 0 && stat(f, "pocket", "ramp_entries") == 0)
+    if (stat(f, "pocket", "helix_entries") > 0 && stat(f, "pocket", "ramp_entries") == 0) {
       EXPECT_LE(widest_entry(f, "pocket", 1, -3), 3 + 1e-9) << name;
+    }
     // The file re-checked by the verify command.
     const CmdResult v = ncpath("verify --in " + out.string());
     EXPECT_EQ(v.exit_code, 0) << v.output;

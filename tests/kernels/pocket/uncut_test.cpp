@@ -82,7 +82,9 @@ void check_levels(const std::vector<std::vector<Seg2>>& pocket, double r, double
     const std::vector<OffsetLoop> u = uncut_between({&outer}, {&inner}, r);
     bands_with_uncut += !u.empty();
     // The quick test may only say "cut" when there is nothing.
-    if (band_cut({&outer}, {&inner}, r)) EXPECT_TRUE(u.empty()) << "band " << k;
+    if (band_cut({&outer}, {&inner}, r)) {
+      EXPECT_TRUE(u.empty()) << "band " << k;
+    }
     const double oracle = clipper_uncut_area(outer.segs, inner.segs, r);
     const double perimeter = loop_length(outer.segs) + loop_length(inner.segs);
     EXPECT_NEAR(ours(u), oracle, 6 * kChord * perimeter + 1e-6) << "band " << k;
@@ -149,7 +151,9 @@ TEST(Uncut, QuickBandTestIsSound) {
       const bool empty = uncut_between(outer, inner, 3).empty();
       said_cut += quick;
       found_uncut += !empty;
-      if (quick) EXPECT_TRUE(empty) << "trial " << trial << " band " << k;
+      if (quick) {
+        EXPECT_TRUE(empty) << "trial " << trial << " band " << k;
+      }
     }
   }
   EXPECT_GT(said_cut, 0);
@@ -199,7 +203,9 @@ int expect_windowed_matches_full(const std::vector<std::vector<Seg2>>& pocket, d
       const std::vector<OffsetLoop> full = uncut_between_full(outer, inner, r);
       const bool cut = band_cut(outer, inner, r);
       *bands_said_cut += cut;
-      if (cut) EXPECT_TRUE(full.empty()) << "level " << k;
+      if (cut) {
+        EXPECT_TRUE(full.empty()) << "level " << k;
+      }
       EXPECT_EQ(fast.size(), full.size()) << "level " << k;
       if (fast.size() != full.size()) continue;
       for (std::size_t i = 0; i < fast.size(); ++i) {
