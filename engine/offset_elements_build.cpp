@@ -275,7 +275,6 @@ OffsetElements elements_near_planes(const OffsetElements& el, int axis,
   return out;
 }
 
-
 PlaneIndex build_plane_index(const OffsetElements& el, std::span<const double> only_at) {
   const std::size_t n = el.element_count();
   const std::size_t sample = std::max<std::size_t>(1, n / 65536);

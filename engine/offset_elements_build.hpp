@@ -49,9 +49,9 @@ OffsetElements mirror_xy(OffsetElements el);
 
 // The elements of el whose extent along the axis (0 x, 1 y: element_extent, padded like the
 // plane index's bound) meets one of the planes at `at` across it, with the points and rings
-// they use: what slices those planes, for a family scanned only along its two side planes. The kept
-// elements stay in id order (their new ids are increasing), so sorts and ties by id order
-// them as before, and element_ref() names the same mesh elements.
+// they use: what slices those planes, for a family scanned only along its two side planes.
+// The kept elements stay in id order (their new ids are increasing), so sorts and ties by id
+// order them as before, and element_ref() names the same mesh elements.
 OffsetElements elements_near_planes(const OffsetElements& el, int axis,
                                     std::span<const double> at);
 

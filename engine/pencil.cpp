@@ -80,6 +80,45 @@ double polyline_length(const std::vector<Vec3>& p) {
   return s;
 }
 
+struct ZLevelCandidates {
+  std::vector<PencilCandidate> cand;
+  std::vector<std::array<ElementRef, 2>> refs;  // the two touched elements
+};
+
+// The sharp-concave junctions of the z-levels (none without a step-down) as candidates of
+// family 2, layer = level index below the part's top `top`.
+ZLevelCandidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter,
+                                   const PencilParams& p, double top, RunControl& control,
+                                   PencilStats& st) {
+  ZLevelCandidates z;
+  if (!(p.step_down > 0)) return z;
+  Stopwatch clock;
+  ZLevelOpParams zp;
+  zp.step_down = p.step_down;
+  zp.tolerance = p.tolerance;
+  zp.condition = false;  // run_pencil conditioned the mesh
+  const ZLevelOpStats zs = run_zlevel(
+      mesh, cutter, zp,
+      [&](const ZLevelChunk& ch) {
+        for (const ZLevelJunctionRecord& j : ch.junctions) {
+          if (j.kind != std::uint8_t(JunctionKind::kSharpConcave)) continue;
+          PencilCandidate c;
+          c.p = Vec3(j.position[0], j.position[1], j.position[2]);
+          c.b1 = Vec3(j.b1[0], j.b1[1], j.b1[2]);
+          c.b2 = Vec3(j.b2[0], j.b2[1], j.b2[2]);
+          c.family = 2;
+          c.layer = std::uint32_t(std::lround((top - c.p.z()) / p.step_down) - 1);
+          z.cand.push_back(c);
+          z.refs.push_back({j.element1, j.element2});
+        }
+      },
+      control);
+  st.levels = zs.levels;
+  st.zlevel_open_chains = zs.open_chains;
+  st.zlevel_s = clock.seconds();
+  return z;
+}
+
 }  // namespace
 
 // The stages for the ball as given (validated by run_pencil), tool tip = centre - radius z
@@ -93,35 +132,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const double floor_z = p.floor_z.value_or(box.lo.z());
   // Candidates from z-levels first (appended after the drive planes' below): their elements
   // are freed before the drive planes' are built, so the two never take memory at once.
-  std::vector<PencilCandidate> zcand;
-  std::vector<std::array<ElementRef, 2>> zrefs;
-  if (p.step_down > 0) {
-    Stopwatch clock;
-    ZLevelOpParams zp;
-    zp.step_down = p.step_down;
-    zp.tolerance = p.tolerance;
-    zp.condition = false;  // run_pencil conditioned the mesh
-    const double top = box.hi.z();
-    const ZLevelOpStats zs = run_zlevel(
-        mesh, cutter, zp,
-        [&](const ZLevelChunk& ch) {
-          for (const ZLevelJunctionRecord& j : ch.junctions) {
-            if (j.kind != std::uint8_t(JunctionKind::kSharpConcave)) continue;
-            PencilCandidate c;
-            c.p = Vec3(j.position[0], j.position[1], j.position[2]);
-            c.b1 = Vec3(j.b1[0], j.b1[1], j.b1[2]);
-            c.b2 = Vec3(j.b2[0], j.b2[1], j.b2[2]);
-            c.family = 2;
-            c.layer = std::uint32_t(std::lround((top - c.p.z()) / p.step_down) - 1);
-            zcand.push_back(c);
-            zrefs.push_back({j.element1, j.element2});
-          }
-        },
-        control);
-    st.levels = zs.levels;
-    st.zlevel_open_chains = zs.open_chains;
-    st.zlevel_s = clock.seconds();
-  }
+  ZLevelCandidates z = zlevel_candidates(mesh, cutter, p, box.hi.z(), control, st);
   const ScanElements se = build_scan_elements(mesh, cutter.radius);
   st.elements_s = se.build_s;
 
@@ -163,8 +174,8 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     }
     st.scan_s = clock.seconds();
   }
-  cand.insert(cand.end(), zcand.begin(), zcand.end());
-  cand_refs.insert(cand_refs.end(), zrefs.begin(), zrefs.end());
+  cand.insert(cand.end(), z.cand.begin(), z.cand.end());
+  cand_refs.insert(cand_refs.end(), z.refs.begin(), z.refs.end());
   st.candidates = cand.size();
 
   // 2. Pencil points (both contacts within the tolerance of the part) and the family that
