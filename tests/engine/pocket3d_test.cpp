@@ -209,7 +209,9 @@ TEST(Pocket3d, FlatBottomIsTheFlatPocketPath) {
     if (std::abs(q.z() + depth) > 1e-9) return;
     off_path += distance_to_paths(flat.cl, q.head<2>(), -depth) > p.eps + 2e-3;
   });
-  if (off_path > 0) EXPECT_GT(out.stats.cleanup_curves, flat.stats.cleanup_curves);
+  if (off_path > 0) {
+    EXPECT_GT(out.stats.cleanup_curves, flat.stats.cleanup_curves);
+  }
 }
 
 // A vault (convex) and a trough (concave) cylinder under a disc pocket.
