@@ -112,18 +112,20 @@ OffsetElements build_offset_elements_parallel(const TriangleMesh& input, double 
     fill_offset_facets(mesh, b, e, offsets[c], el, keys);
   });
 
-  // Unique edges: half-edges sorted by (key, slot), as the reference does.
-  std::vector<std::uint32_t> order(keys.size());
-  std::iota(order.begin(), order.end(), 0u);
-  par::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return keys[a] != keys[b] ? keys[a] < keys[b] : a < b;
-  });
-  std::vector<std::uint64_t> sorted(keys.size());
-  std::vector<std::uint32_t> key_facet(keys.size());
+  // Unique edges: half-edges sorted by (key, slot), as the reference does, as contiguous
+  // pairs (the sort reads no other memory).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> order(keys.size());
+  par::for_each(keys.size(), 65536,
+                [&](std::size_t i) { order[i] = {keys[i], std::uint32_t(i)}; });
+  std::vector<std::uint64_t>().swap(keys);
+  par::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a < b; });
+  std::vector<std::uint64_t> sorted(order.size());
+  std::vector<std::uint32_t> key_facet(order.size());
   par::for_each(order.size(), 65536, [&](std::size_t i) {
-    sorted[i] = keys[order[i]];
-    key_facet[i] = order[i] / 3;
+    sorted[i] = order[i].first;
+    key_facet[i] = order[i].second / 3;
   });
+  decltype(order)().swap(order);
   std::vector<std::uint32_t> edge_start;
   edge_start.reserve(sorted.size() / 2 + 1);
   for (std::size_t i = 0; i < sorted.size(); ++i)
