@@ -21,28 +21,45 @@ void put(PathOut& o, const Vec3& p, std::uint8_t contact) {
   o.contact.push_back(contact);
 }
 
-// One path: points [first, first + n) of `in`.
+// One path: points [first, first + n) of `in`. Its moves are checked as one run, then the
+// lift-overs of those that gouge as another (moves with a non-finite end are not checked).
 PathOut guard_path(const MeshVerifier& mesh, const SweptTool& tool, const ClChunk& in,
                    std::size_t first, std::size_t n) {
+  std::vector<Vec3> tips(n);
+  for (std::size_t i = 0; i < n; ++i) tips[i] = in.point(first + i);
+  std::vector<MeshVerifier::MoveCheck> checks(n > 0 ? n - 1 : 0);
+  mesh.check_path(tool, tips.data(), n, tol::kVerifyGouge, 0, checks.data(),
+                  MoveCheckMode::kDecide);
+  // Move i - 1 (tips i - 1 -> i) is lifted across at its higher end's height, raised by
+  // the lift that clears that move.
+  std::vector<std::size_t> lifted;
+  std::vector<Vec3> up0, up1;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (checks[i - 1].gouge <= 0 || !std::isfinite(tips[i - 1].z()) || !std::isfinite(tips[i].z()))
+      continue;
+    const double zmax = std::max(tips[i - 1].z(), tips[i].z());
+    lifted.push_back(i);
+    up0.emplace_back(tips[i - 1].x(), tips[i - 1].y(), zmax);
+    up1.emplace_back(tips[i].x(), tips[i].y(), zmax);
+  }
+  std::vector<MeshVerifier::MoveCheck> lifts(lifted.size());
+  mesh.check_moves(tool, up0.data(), up1.data(), lifted.size(), 0, 0, lifts.data());
   PathOut o;
-  for (std::size_t i = first; i < first + n; ++i) {
-    const Vec3 b = in.point(i);
-    if (i > first && std::isfinite(b.z()) && std::isfinite(in.point(i - 1).z())) {
-      const Vec3 a = in.point(i - 1);
-      ++o.stats.moves;
-      if (mesh.check_move(tool, a, b, tol::kVerifyGouge).gouge > 0) {
-        // Across at the higher end's height, raised by the lift that clears that move.
-        const double zmax = std::max(a.z(), b.z());
-        const Vec3 a_up(a.x(), a.y(), zmax), b_up(b.x(), b.y(), zmax);
-        const double top = zmax + mesh.check_move(tool, a_up, b_up, 0).gouge;
-        if (top > a.z()) put(o, Vec3(a.x(), a.y(), top), 0);
-        if (top > b.z()) put(o, Vec3(b.x(), b.y(), top), 0);
-        ++o.stats.lifted;
-        o.stats.points_added += (top > a.z()) + (top > b.z());
-        o.stats.max_lift = std::max(o.stats.max_lift, top - zmax);
-      }
+  std::size_t next = 0;  // into lifted
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& b = tips[i];
+    if (i > 0 && std::isfinite(b.z()) && std::isfinite(tips[i - 1].z())) ++o.stats.moves;
+    if (next < lifted.size() && lifted[next] == i) {
+      const Vec3& a = tips[i - 1];
+      const double zmax = up0[next].z(), top = zmax + lifts[next].gouge;
+      if (top > a.z()) put(o, Vec3(a.x(), a.y(), top), 0);
+      if (top > b.z()) put(o, Vec3(b.x(), b.y(), top), 0);
+      ++o.stats.lifted;
+      o.stats.points_added += (top > a.z()) + (top > b.z());
+      o.stats.max_lift = std::max(o.stats.max_lift, top - zmax);
+      ++next;
     }
-    put(o, b, in.contact[i]);
+    put(o, b, in.contact[first + i]);
   }
   return o;
 }

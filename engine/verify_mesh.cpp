@@ -57,6 +57,69 @@ double xy_distance(const Vec2& a, const Vec2& b, const Vec2 t[3]) {
   return std::sqrt(d2);
 }
 
+// Squared distance in xy between two boxes (0 when they overlap).
+double box_distance2(double ax0, double ay0, double ax1, double ay1, double bx0, double by0,
+                     double bx1, double by1) {
+  const double dx = std::max({0.0, bx0 - ax1, ax0 - bx1});
+  const double dy = std::max({0.0, by0 - ay1, ay0 - by1});
+  return dx * dx + dy * dy;
+}
+
+// What a move (or a group of consecutive moves) asks of the grid: the box of the swept
+// body and the bounds that dismiss a tile or a facet. Tips lie in [tip_lo, tip_hi].
+struct SweptBox {
+  Vec3 tip_lo, tip_hi;
+  Vec3 lo, hi;  // the swept body's box (plus the cap)
+
+  SweptBox(const SweptTool& tool, const Vec3& t0, const Vec3& t1, double cap)
+      : tip_lo(t0.cwiseMin(t1)), tip_hi(t0.cwiseMax(t1)) {
+    update(tool, cap);
+  }
+  void add(const SweptTool& tool, const Vec3& p, double cap) {
+    tip_lo = tip_lo.cwiseMin(p);
+    tip_hi = tip_hi.cwiseMax(p);
+    update(tool, cap);
+  }
+  // The body (grown by stock) reaches R + s sideways and up to 2r + shank + s above the
+  // highest tip (ball part on top of the shank).
+  void update(const SweptTool& tool, double cap) {
+    const double s = tool.stock, reach = tool.cutter.radius + s + cap;
+    const double top = 2 * tool.cutter.corner_radius + tool.shank + s;
+    lo = tip_lo - Vec3(reach, reach, s + cap);
+    hi = tip_hi + Vec3(reach, reach, top + cap);
+  }
+  // Squared xy distance of the box [x0, x1] x [y0, y1] from the tips' box.
+  double xy_distance2(double x0, double y0, double x1, double y1) const {
+    return box_distance2(x0, y0, x1, y1, tip_lo.x(), tip_lo.y(), tip_hi.x(), tip_hi.y());
+  }
+  template <class Box>  // FacetRec or Candidate
+  bool meets(const Box& f) const {
+    return !(f.hi_x < lo.x() || f.lo_x > hi.x() || f.hi_y < lo.y() || f.lo_y > hi.y() ||
+             f.z_hi < lo.z() || f.z_lo > hi.z());
+  }
+};
+
+// Rounded to float outward (down for a low bound, up for a high one).
+float float_down(double v) {
+  const float f = static_cast<float>(v);
+  return f > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+float float_up(double v) {
+  const float f = static_cast<float>(v);
+  return f < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+// A facet gathered for a group of moves: its box rounded outward to float (compact, for the
+// first tests of every move of the group) and its index into the verifier's facets.
+struct Candidate {
+  float lo_x, lo_y, hi_x, hi_y, z_lo, z_hi;
+  std::uint32_t facet;
+  Candidate(const FacetRec& f, std::uint32_t index)
+      : lo_x(float_down(f.lo_x)), lo_y(float_down(f.lo_y)), hi_x(float_up(f.hi_x)),
+        hi_y(float_up(f.hi_y)), z_lo(float_down(f.z_lo)), z_hi(float_up(f.z_hi)),
+        facet(index) {}
+};
+
 // Better of two (value, move) pairs for "smallest value, then lowest move".
 bool closer(double a, std::uint64_t move_a, double b, std::uint64_t move_b) {
   return a < b || (a == b && move_a < move_b);
@@ -108,6 +171,8 @@ struct MeshVerifier::Impl {
   void build_tiles();
   template <class Matters, class Visit>
   void visit(const Vec3& lo, const Vec3& hi, Matters&& matters, Visit&& visit) const;
+  void gather(const SweptTool& tool, const Cutter& profile, const SweptBox& group, double floor,
+              double cap, std::vector<Candidate>& out) const;
   template <class Visit>
   void visit_cell(std::int32_t i, std::int32_t j, std::int32_t i0, std::int32_t j0,
                   const Vec3& lo, const Vec3& hi, Visit&& visit) const;
@@ -275,33 +340,45 @@ struct MoveScan {
   Vec2 a, b;       // the move in xy
   double foot;     // R + stock: horizontal reach of the body from the axis, mm
   double low_tip;  // lowest tip of the move, mm
-  Cutter profile;  // lower surface of the body, tip at tip - stock
+  const Cutter& profile;  // lower surface of the body, tip at tip - stock
   double floor0;   // gouges at most this are not reported, mm
   double cap;      // clearance cap (0: no clearance), mm
+  bool decide;     // MoveCheckMode::kDecide: stop at the first gouge, do not measure it
+  SweptBox box;
   MeshVerifier::MoveCheck out;
 
-  void facet(const FacetRec& f) {
+  MoveScan(const SweptTool& t, const Vec3& q0, const Vec3& q1, const Cutter& prof,
+           double gouge_floor, double clearance_cap, MoveCheckMode mode)
+      : tool(t), p0(q0), p1(q1), a(q0.x(), q0.y()), b(q1.x(), q1.y()),
+        foot(t.cutter.radius + t.stock), low_tip(std::min(q0.z(), q1.z())), profile(prof),
+        floor0(gouge_floor), cap(clearance_cap), decide(mode == MoveCheckMode::kDecide),
+        box(t, q0, q1, clearance_cap) {}
+
+  // Nothing left to find: a decided gouge (no clearance asked).
+  bool done() const { return decide && out.gouge > 0 && cap == 0; }
+
+  // A candidate of the move's group: dismissed when its box misses the move's, or when
+  // its xy box is beyond the body's reach (and the cap), or (no clearance asked) when its
+  // top lies under the body raised by the gouge so far over that box distance (a lower
+  // bound of the exact xy distance that facet() uses for the same tests). The float box
+  // holds the facet's: these tests are conservative, and the exact box is tested last.
+  void candidate(const Candidate& c, const FacetRec* facets) {
+    if (!box.meets(c)) return;
     ++out.candidates;
+    const double d2 = box.xy_distance2(c.lo_x, c.lo_y, c.hi_x, c.hi_y);
+    if (d2 > (foot + cap) * (foot + cap)) return;
+    const double rise = c.z_hi - (low_tip + std::max(floor0, out.gouge) - tool.stock);
+    if (cap == 0 && profile_height_at_least(profile, d2, rise)) return;
+    const FacetRec& f = facets[c.facet];
+    if (box.meets(f)) facet(f);
+  }
+
+  void facet(const FacetRec& f) {
     const Vec2 t[3] = {
         {f.p[0].x(), f.p[0].y()}, {f.p[1].x(), f.p[1].y()}, {f.p[2].x(), f.p[2].y()}};
     const double dxy = xy_distance(a, b, t);
     if (dxy <= foot) gouge(f, dxy);
     if (cap > 0 && dxy <= foot + cap) clearance(f, dxy);
-  }
-
-  // False when no facet within the tile's bounds can raise the gouge: beyond the body's
-  // reach, or below its bottom (raised by the gouge so far) at a lower bound of the tile's
-  // xy distance (from its centre, less its half diagonal; the profile is non-decreasing).
-  // Rapids also need the clearance: every tile matters.
-  template <class Tile>
-  bool matters(const Tile& t) const {
-    if (cap > 0) return true;
-    const Vec2 half(0.5 * (t.hi_x - t.lo_x), 0.5 * (t.hi_y - t.lo_y));
-    const Vec2 centre(t.lo_x + half.x(), t.lo_y + half.y());
-    const double d = std::max(0.0, std::sqrt(dist2_point_segment(centre, a, b)) - half.norm());
-    if (d > foot) return false;
-    const double floor = std::max(floor0, out.gouge);
-    return t.z_hi > low_tip + floor - tool.stock + profile_height(profile, d);
   }
 
   void gouge(const FacetRec& f, double dxy) {
@@ -313,9 +390,15 @@ struct MoveScan {
     const Vec3 up(0, 0, floor);
     if (f.n != Vec3::Zero() && swept_plane_gap(tool, p0 + up, p1 + up, f.n, f.d_lo, f.d_hi) >= 0)
       return;
-    const SweptGouge g = swept_gouge_above(tool, p0, p1, f.p[0], f.p[1], f.p[2], floor);
+    if (decide && out.gouge > 0) return;
+    const SweptGouge g =
+        decide ? swept_gouges_above(tool, p0, p1, f.p[0], f.p[1], f.p[2], floor)
+               : swept_gouge_above(tool, p0, p1, f.p[0], f.p[1], f.p[2], floor);
     out.gjk_calls += g.gjk_calls;
-    if (g.gouge > out.gouge) {
+    if (decide && g.gouge > 0) {
+      out.gouge = std::numeric_limits<double>::infinity();
+      out.gouge_facet = f.source;
+    } else if (g.gouge > out.gouge) {
       out.gouge = g.gouge;
       out.gouge_facet = f.source;
     }
@@ -337,33 +420,83 @@ struct MoveScan {
 
 }  // namespace
 
-MeshVerifier::MoveCheck MeshVerifier::check_move(const SweptTool& tool_in, const Vec3& p0,
-                                                 const Vec3& p1, double gouge_floor,
-                                                 double clearance_cap) const {
+// Facets a group of moves may reach: those whose box meets the group's box, in tiles that
+// matter for some move of the group (with rapids every tile matters: the clearance), in
+// ascending index. A tile matters unless it lies beyond the body's reach from every tip
+// box, or below the body's bottom (raised by the floor) at that distance; the profile is
+// non-decreasing, so the bound holds for every move of the group.
+void MeshVerifier::Impl::gather(const SweptTool& tool, const Cutter& profile, const SweptBox& g,
+                                double floor, double cap,
+                                std::vector<Candidate>& out) const {
+  const double reach = tool.cutter.radius + tool.stock + cap;
+  const double base = g.tip_lo.z() + floor - tool.stock;  // the lowest bottom, raised
+  // Within reach of the tips' box, and (no clearance asked) not under the body's bottom at
+  // that distance: what a box (a tile's, a facet's) must pass to matter to some move.
+  auto may_matter = [&](double x0, double y0, double x1, double y1, double top) {
+    const double d2 = g.xy_distance2(x0, y0, x1, y1);
+    if (d2 > reach * reach) return false;
+    return cap > 0 || !profile_height_at_least(profile, d2, top - base);
+  };
+  out.clear();
+  visit(
+      g.lo, g.hi,
+      [&](const Tile& t) { return may_matter(t.lo_x, t.lo_y, t.hi_x, t.hi_y, t.z_hi); },
+      [&](const FacetRec& f) {
+        if (may_matter(f.lo_x, f.lo_y, f.hi_x, f.hi_y, f.z_hi))
+          out.emplace_back(f, static_cast<std::uint32_t>(&f - facets.data()));
+      });
+  std::sort(out.begin(), out.end(),
+            [](const Candidate& a, const Candidate& b) { return a.facet < b.facet; });
+}
+
+void MeshVerifier::check_moves(const SweptTool& tool_in, const Vec3* from, const Vec3* to,
+                               std::size_t n, double gouge_floor, double clearance_cap,
+                               MoveCheck* out, MoveCheckMode mode) const {
   SweptTool tool = tool_in;
   tool.stock = std::max(0.0, tool.stock);
   tool.shank = std::max(0.0, tool.shank);
-  const double s = tool.stock, cap = std::max(0.0, clearance_cap);
-  MoveScan scan{tool,
-                p0,
-                p1,
-                Vec2(p0.x(), p0.y()),
-                Vec2(p1.x(), p1.y()),
-                tool.cutter.radius + s,
-                std::min(p0.z(), p1.z()),
-                swept_profile(tool),
-                std::max(0.0, gouge_floor),
-                cap,
-                {}};
-  // The swept body (grown by stock) lies in [lo, hi] without the cap: up to 2r + shank + s
-  // above the highest tip (ball part on top of the shank).
-  const double reach = scan.foot + cap, top = 2 * tool.cutter.corner_radius + tool.shank + s;
-  const Vec3 lo = p0.cwiseMin(p1) - Vec3(reach, reach, s + cap);
-  const Vec3 hi = p0.cwiseMax(p1) + Vec3(reach, reach, top + cap);
-  impl_->visit(
-      lo, hi, [&](const Impl::Tile& t) { return scan.matters(t); },
-      [&](const FacetRec& f) { scan.facet(f); });
-  return scan.out;
+  const double floor = std::max(0.0, gouge_floor), cap = std::max(0.0, clearance_cap);
+  const Cutter profile = swept_profile(tool);
+  const double extent = kGroupExtent * (tool.cutter.radius + tool.stock);
+  auto finite = [&](std::size_t k) { return from[k].allFinite() && to[k].allFinite(); };
+  std::vector<Candidate> candidates;
+  for (std::size_t k = 0; k < n;) {
+    if (!finite(k)) {
+      out[k++] = MoveCheck{};
+      continue;
+    }
+    // Moves [k, e) form a group: consecutive, their tips within `extent` in x, y and z.
+    SweptBox group(tool, from[k], to[k], cap);
+    std::size_t e = k + 1;
+    for (; e < n && e - k < kMaxGroup && finite(e); ++e) {
+      const Vec3 lo = group.tip_lo.cwiseMin(from[e]).cwiseMin(to[e]);
+      const Vec3 hi = group.tip_hi.cwiseMax(from[e]).cwiseMax(to[e]);
+      if ((hi - lo).maxCoeff() > extent) break;
+      group.add(tool, from[e], cap);
+      group.add(tool, to[e], cap);
+    }
+    impl_->gather(tool, profile, group, floor, cap, candidates);
+    for (; k < e; ++k) {
+      MoveScan scan(tool, from[k], to[k], profile, floor, cap, mode);
+      for (std::size_t c = 0; c < candidates.size() && !scan.done(); ++c)
+        scan.candidate(candidates[c], impl_->facets.data());
+      out[k] = scan.out;
+    }
+  }
+}
+
+void MeshVerifier::check_path(const SweptTool& tool, const Vec3* tips, std::size_t n,
+                              double gouge_floor, double clearance_cap, MoveCheck* out,
+                              MoveCheckMode mode) const {
+  if (n >= 2) check_moves(tool, tips, tips + 1, n - 1, gouge_floor, clearance_cap, out, mode);
+}
+
+MeshVerifier::MoveCheck MeshVerifier::check_move(const SweptTool& tool, const Vec3& p0,
+                                                 const Vec3& p1, double gouge_floor,
+                                                 double clearance_cap) const {
+  MoveCheck out;
+  check_moves(tool, &p0, &p1, 1, gouge_floor, clearance_cap, &out);
+  return out;
 }
 
 void merge(MeshVerifyReport& into, const MeshVerifyReport& from) {
@@ -418,6 +551,31 @@ Vec3 point_at(const ClChunk& cl, std::uint64_t i) {
   return {cl.xyz[3 * i], cl.xyz[3 * i + 1], cl.xyz[3 * i + 2]};
 }
 
+// Counts one checked move into a block's report.
+void tally(MeshVerifyReport& out, MoveViolation v, const MeshVerifier::MoveCheck& c, bool rapid,
+           double cap, double safe_clearance) {
+  ++out.moves;
+  out.candidates += c.candidates;
+  out.gjk_calls += c.gjk_calls;
+  if (c.gouge > 0) {
+    ++out.gouging_moves;
+    out.max_gouge = std::max(out.max_gouge, c.gouge);
+    v.amount = c.gouge;
+    v.facet = c.gouge_facet;
+    out.worst.push_back(v);
+  }
+  if (!rapid) return;
+  const double clearance = std::min(c.clearance, cap);
+  if (++out.rapid_moves == 1 ||
+      closer(clearance, v.move, out.min_rapid_clearance, out.closest_rapid.move)) {
+    out.min_rapid_clearance = clearance;
+    out.closest_rapid = v;
+    out.closest_rapid.amount = clearance;
+    out.closest_rapid.facet = c.clearance_facet;
+  }
+  if (clearance < safe_clearance) ++out.unsafe_rapids;
+}
+
 }  // namespace
 
 MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter, const ClChunk& cl,
@@ -440,42 +598,32 @@ MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter
     const std::uint64_t m0 = bi * kBlock, m1 = std::min(moves, m0 + kBlock);
     std::size_t k = std::upper_bound(index.move_start.begin(), index.move_start.end(), m0) -
                     index.move_start.begin() - 1;
-    for (std::uint64_t m = m0; m < m1; ++m) {
-      while (m >= index.move_start[k + 1]) ++k;
+    std::vector<Vec3> tips;
+    std::vector<MeshVerifier::MoveCheck> checks;
+    for (std::uint64_t m = m0; m < m1; ++k) {
+      // Moves [m, m_end) of path k, from point i on, checked as one run.
+      const std::uint64_t m_end = std::min(m1, index.move_start[k + 1]);
+      if (m_end <= m) continue;
       const std::uint64_t i = index.point_start[k] + (m - index.move_start[k]);
-      MoveViolation v;
-      v.move = first_move_index + m;
-      v.path = first_path_index + static_cast<std::uint32_t>(k);
-      v.from = point_at(cl, i);
-      v.to = point_at(cl, i + 1);
-      if (!v.from.allFinite() || !v.to.allFinite()) {
-        if (out.error.empty())
-          out.error = "move " + std::to_string(v.move) + " has a non-finite point";
-        continue;
-      }
+      tips.clear();
+      for (std::uint64_t j = i; j <= i + (m_end - m); ++j) tips.push_back(point_at(cl, j));
       const bool rapid = cl.path_kinds[k] == static_cast<std::uint8_t>(PathKind::kRapid);
-      const MeshVerifier::MoveCheck c = verifier.check_move(
-          tool, v.from, v.to, std::max(0.0, params.gouge_tolerance), rapid ? cap : 0);
-      ++out.moves;
-      out.candidates += c.candidates;
-      out.gjk_calls += c.gjk_calls;
-      if (c.gouge > 0) {
-        ++out.gouging_moves;
-        out.max_gouge = std::max(out.max_gouge, c.gouge);
-        v.amount = c.gouge;
-        v.facet = c.gouge_facet;
-        out.worst.push_back(v);
+      checks.resize(tips.size() - 1);
+      verifier.check_path(tool, tips.data(), tips.size(), std::max(0.0, params.gouge_tolerance),
+                          rapid ? cap : 0, checks.data());
+      for (std::size_t r = 0; r < checks.size(); ++r, ++m) {
+        MoveViolation v;
+        v.move = first_move_index + m;
+        v.path = first_path_index + static_cast<std::uint32_t>(k);
+        v.from = tips[r];
+        v.to = tips[r + 1];
+        if (!v.from.allFinite() || !v.to.allFinite()) {
+          if (out.error.empty())
+            out.error = "move " + std::to_string(v.move) + " has a non-finite point";
+          continue;
+        }
+        tally(out, v, checks[r], rapid, cap, params.safe_clearance);
       }
-      if (!rapid) continue;
-      const double clearance = std::min(c.clearance, cap);
-      if (++out.rapid_moves == 1 ||
-          closer(clearance, v.move, out.min_rapid_clearance, out.closest_rapid.move)) {
-        out.min_rapid_clearance = clearance;
-        out.closest_rapid = v;
-        out.closest_rapid.amount = clearance;
-        out.closest_rapid.facet = c.clearance_facet;
-      }
-      if (clearance < params.safe_clearance) ++out.unsafe_rapids;
     }
     keep_worst(out.worst, out.worst_capacity);
   });

@@ -5,22 +5,30 @@
 // every facet it may reach.
 //
 // Candidates come from a uniform grid over the mesh's xy box, in double precision: a facet
-// sits in the cells its xy box overlaps, and a move visits the cells under the swept tool's
-// box (xy grown by R + stock, plus the clearance cap for rapids; z from the lowest tip minus
-// stock to the highest tip plus 2r + shank + stock) and sees each facet once. Tiles of 4 x 4
-// cells bound their facets (xy box, top): a tile beyond the body's reach or below its bottom
-// is dismissed whole (gouge checks; rapids visit every tile for the clearance). Candidates are
-// then dismissed by exact bounds before any GJK call: the facet's xy distance from the move's
-// xy segment (beyond R + stock nothing touches), its top below the swept bottom over that
-// distance (profile of the tool grown by stock at the lowest tip), and its plane's distance
-// from the swept body. Each move keeps its largest gouge so far as a floor: a facet costs one
-// GJK call unless it gouges deeper than every facet before it.
+// sits in the cells its xy box overlaps. Consecutive moves of a path whose tips lie close
+// together (a raster's, a pencil's: within R + stock) form a group, and the group walks the
+// grid once: the cells under its swept box (its tips' box grown by R + stock, plus the
+// clearance cap for rapids, in xy; z from the lowest tip minus stock to the highest tip plus
+// 2r + shank + stock), seeing each facet once. Tiles of 4 x 4 cells bound their facets (xy
+// box, top): a tile, and then a facet, beyond the body's reach from every tip or below its
+// bottom at the lowest tip is dismissed for the whole group (rapids keep everything within
+// the reach and the cap, for the clearance). The survivors, with their boxes rounded outward
+// to float, are the group's candidates, in ascending facet index.
+//
+// Each move of the group then scans the candidates in that order, dismissing them by exact
+// bounds before any GJK call: the facet's box against the move's, its xy distance from the
+// move's xy segment (beyond R + stock nothing touches), its top below the swept bottom over
+// that distance (profile of the tool grown by stock at the lowest tip), and its plane's
+// distance from the swept body. Each move keeps its largest gouge so far as a floor: a facet
+// costs one GJK call unless it gouges deeper than every facet before it. As every move sees
+// its facets in ascending index, whatever group it is in, its result does not depend on
+// how moves are grouped (nor on chunks or threads).
 //
 // Gouge = vertical lift (mm) that clears the move (swept_tool.hpp): what a machinist calls
 // "cut in by X mm". Moves whose gouge is at most gouge_tolerance are clean.
 //
-// verify_moves runs moves in parallel (engine/parallel.hpp); each move is computed alone
-// (facets in grid order) and block reports are merged in block order with strict total
+// verify_moves runs moves in parallel (engine/parallel.hpp), blocks of consecutive moves a
+// task; each move's result is its own (facets in index order) and block reports are merged in block order with strict total
 // orders, so the report is identical for any thread count. MeshVerifier is built once per
 // mesh and queried concurrently (const, no shared mutable state).
 #include <cstdint>
@@ -79,6 +87,11 @@ struct MeshVerifyReport {
 // depend on how moves were split into reports.
 void merge(MeshVerifyReport& into, const MeshVerifyReport& from);
 
+// What a move check finds out about the gouge: its depth (kMeasure), or only whether there
+// is one above the floor (kDecide: the scan stops at the first facet that gouges, and
+// MoveCheck::gouge is +inf for yes, 0 for no; clearances, when asked, are still measured).
+enum class MoveCheckMode { kMeasure, kDecide };
+
 class MeshVerifier {
  public:
   // Copies the facets (the mesh need not outlive the verifier). Facets with a non-finite
@@ -103,6 +116,25 @@ class MeshVerifier {
   // gap may be below the cap (+inf when none is). Thread-safe.
   MoveCheck check_move(const SweptTool& tool, const Vec3& p0, const Vec3& p1, double gouge_floor,
                        double clearance_cap = 0) const;
+
+  // The moves from[k] -> to[k], k < n: out[k] is what check_move(tool, from[k], to[k], ...)
+  // returns, bit for bit (every move scans its facets in ascending index, whatever it is
+  // grouped with), but for `candidates`, which counts the facets of its group that the move
+  // met. Consecutive moves whose tips lie within kGroupExtent x (R + stock) of
+  // each other share one walk of the grid: a raster's or a pencil's short moves cost one
+  // walk per group, not one each. A move with a non-finite tip is not checked (its out[k]
+  // is a default MoveCheck). out must hold n checks. Thread-safe.
+  void check_moves(const SweptTool& tool, const Vec3* from, const Vec3* to, std::size_t n,
+                   double gouge_floor, double clearance_cap, MoveCheck* out,
+                   MoveCheckMode mode = MoveCheckMode::kMeasure) const;
+  // The moves tips[k] -> tips[k + 1] of one path (n - 1 of them; none when n < 2).
+  void check_path(const SweptTool& tool, const Vec3* tips, std::size_t n, double gouge_floor,
+                  double clearance_cap, MoveCheck* out,
+                  MoveCheckMode mode = MoveCheckMode::kMeasure) const;
+  // Performance settings (any values give the same checks): how far apart the tips of one
+  // group may lie, in units of R + stock, and how many moves a group holds at most.
+  static constexpr double kGroupExtent = 1.0;
+  static constexpr std::size_t kMaxGroup = 64;
 
   std::uint64_t facet_count() const;  // facets held
   std::uint64_t skipped() const;      // facets skipped (non-finite vertices)

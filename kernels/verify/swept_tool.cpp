@@ -402,28 +402,62 @@ double swept_gap(const SweptTool& tool, const Vec3& p0, const Vec3& p1, const Ve
   return round_gap(b, t, 0);
 }
 
+namespace {
+
+// What swept_gouge_above() decides before it measures the lift: `gouges` tells whether the
+// gouge exceeds the floor; for round tools `gap_floor` is the gap of the move raised by the
+// floor, for sharp ones `sharp` is the gouge itself.
+struct GougeDecision {
+  bool gouges = false;
+  double gap_floor = 0, sharp = 0;
+  int gjk_calls = 0;
+};
+
+GougeDecision decide_gouge(const SweptTool& tool, const Body& b, const Vec3 t[3], double floor) {
+  GougeDecision d;
+  if (is_sharp(tool)) {
+    d.sharp = sharp_depth(tool, t, b.core.m) - tol::kVerifyContact;
+    d.gouges = d.sharp > floor;
+    return d;
+  }
+  const double cut = -tol::kVerifyContact;
+  ++d.gjk_calls;
+  d.gap_floor = round_gap(b, t, floor);
+  if (d.gap_floor >= cut) return d;  // raised by floor it does not cut: gouge <= floor
+  if (floor > 0) {
+    ++d.gjk_calls;
+    if (round_gap(b, t, 0) >= cut) return d;  // it does not cut where it is
+  }
+  d.gouges = true;  // the cutting heights reach from 0 past the floor: the lift exceeds it
+  return d;
+}
+
+}  // namespace
+
 SweptGouge swept_gouge_above(const SweptTool& tool, const Vec3& p0, const Vec3& p1, const Vec3& t0,
                              const Vec3& t1, const Vec3& t2, double floor, double resolution) {
   const Body b = verified_body(tool, p0, p1);
   const Vec3 t[3] = {t0 - p0, t1 - p0, t2 - p0};
+  const GougeDecision d = decide_gouge(tool, b, t, floor);
   SweptGouge out;
+  out.gjk_calls = d.gjk_calls;
+  if (!d.gouges) return out;
   if (is_sharp(tool)) {
-    const double gouge = sharp_depth(tool, t, b.core.m) - tol::kVerifyContact;
-    if (gouge > floor) out.gouge = gouge;
+    out.gouge = d.sharp;
     return out;
   }
-  const double cut = -tol::kVerifyContact;
-  ++out.gjk_calls;
-  const double gap_floor = round_gap(b, t, floor);
-  if (gap_floor >= cut) return out;  // raised by floor it does not cut: gouge <= floor
-  if (floor > 0) {
-    ++out.gjk_calls;
-    if (round_gap(b, t, 0) >= cut) return out;  // it does not cut where it is
-  }
-  const SweptGouge lift = lift_round(tool, b, t, floor, gap_floor, resolution);
+  const SweptGouge lift = lift_round(tool, b, t, floor, d.gap_floor, resolution);
   out.gjk_calls += lift.gjk_calls;
   if (lift.gouge > floor) out.gouge = lift.gouge;
   return out;
+}
+
+SweptGouge swept_gouges_above(const SweptTool& tool, const Vec3& p0, const Vec3& p1,
+                              const Vec3& t0, const Vec3& t1, const Vec3& t2, double floor) {
+  const Body b = verified_body(tool, p0, p1);
+  const Vec3 t[3] = {t0 - p0, t1 - p0, t2 - p0};
+  const GougeDecision d = decide_gouge(tool, b, t, floor);
+  return {d.gouges ? 1.0 : 0.0, d.gjk_calls};
 }
 
 double swept_gouge(const SweptTool& tool, const Vec3& p0, const Vec3& p1, const Vec3& t0,

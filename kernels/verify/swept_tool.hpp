@@ -73,6 +73,11 @@ SweptGouge swept_gouge_above(const SweptTool& tool, const Vec3& p0, const Vec3& 
                              const Vec3& t1, const Vec3& t2, double floor,
                              double resolution = tol::kGougeResolution);
 
+// Whether the gouge exceeds `floor`, without measuring it: gouge 1 when swept_gouge_above()
+// would report one (the same decision, from its first one or two GJK calls), else 0.
+SweptGouge swept_gouges_above(const SweptTool& tool, const Vec3& p0, const Vec3& p1,
+                              const Vec3& t0, const Vec3& t1, const Vec3& t2, double floor);
+
 // ---- Cheap bounds for callers that cull triangles before GJK (exact, conservative) ----
 
 // The lower surface of the verified body (grown by stock) as a cutter whose tip is `stock`

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <string>
 
 #include "engine/drop_index.hpp"
 #include "engine/facet_table.hpp"
@@ -168,6 +169,95 @@ TEST(VerifyMesh, EqualsBruteForceOverAllFacets) {
     }
   }
   EXPECT_GT(gouging, 100);
+}
+
+void expect_same_check(const MeshVerifier::MoveCheck& got, const MeshVerifier::MoveCheck& want,
+                       const std::string& what) {
+  EXPECT_EQ(got.gouge, want.gouge) << what;
+  EXPECT_EQ(got.gouge_facet, want.gouge_facet) << what;
+  EXPECT_EQ(got.clearance, want.clearance) << what;
+  EXPECT_EQ(got.clearance_facet, want.clearance_facet) << what;
+  EXPECT_EQ(got.gjk_calls, want.gjk_calls) << what;
+}
+
+// Paths of short moves (a raster's, a pencil's) share one walk of the grid per group of
+// moves: each move's check must still be the one it gets alone, bit for bit, whatever it
+// is grouped with: random walks over a random terrain, with steps from 0.05 mm to 4 mm (one
+// group to many), climbs and drops, points sunk into the part, three cutters with stock,
+// gouge floors and rapid caps; the same moves as unconnected pairs in another order.
+TEST(VerifyMesh, PathChecksEqualSingleMoveChecks) {
+  const TriangleMesh mesh = test::random_height_field(40, 40, 5, 21);
+  const MeshVerifier verifier(mesh);
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> X(2, 38), U(-1, 1), Z(0, 8);
+  const Cutter cutters[] = {ball_cutter(6), flat_cutter(5), bull_nose_cutter(8, 1.5)};
+  int gouging = 0, groups_of_many = 0;
+  for (const Cutter& c : cutters) {
+    const SweptTool tool{c, 20, 0.2};
+    for (double step : {0.05, 0.3, 4.0}) {
+      for (const double floor : {1e-6, 0.05}) {
+        for (const double cap : {0.0, 3.0}) {
+          std::vector<Vec3> tips{{X(rng), X(rng), Z(rng)}};
+          for (int i = 0; i < 120; ++i)
+            tips.push_back(tips.back() + Vec3(step * U(rng), step * U(rng), 0.5 * step * U(rng)));
+          std::vector<MeshVerifier::MoveCheck> path(tips.size() - 1);
+          verifier.check_path(tool, tips.data(), tips.size(), floor, cap, path.data());
+          // Unconnected: every other move, reversed order.
+          std::vector<Vec3> from, to;
+          for (std::size_t k = path.size(); k-- > 0;)
+            if (k % 2 == 0) {
+              from.push_back(tips[k]);
+              to.push_back(tips[k + 1]);
+            }
+          std::vector<MeshVerifier::MoveCheck> pairs(from.size());
+          verifier.check_moves(tool, from.data(), to.data(), from.size(), floor, cap, pairs.data());
+          for (std::size_t k = 0; k < path.size(); ++k) {
+            const std::string what = std::string(cutter_type_name(c.type)) + " step " +
+                                     std::to_string(step) + " move " + std::to_string(k);
+            const MeshVerifier::MoveCheck alone =
+                verifier.check_move(tool, tips[k], tips[k + 1], floor, cap);
+            expect_same_check(path[k], alone, what);
+            if (k % 2 == 0) expect_same_check(pairs[pairs.size() - 1 - k / 2], alone, what);
+            gouging += alone.gouge > 0;
+          }
+          groups_of_many += step < 1;
+        }
+      }
+    }
+  }
+  EXPECT_GT(gouging, 500);
+  EXPECT_GT(groups_of_many, 0);
+}
+
+// kDecide says what kMeasure says about each move (a gouge above the floor or not), as +inf
+// or 0, and still measures rapids' clearances.
+TEST(VerifyMesh, DecidingAGougeAgreesWithMeasuringIt) {
+  const TriangleMesh mesh = test::random_height_field(30, 40, 5, 9);
+  const MeshVerifier verifier(mesh);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> X(2, 38), U(-1, 1), Z(1, 7);
+  int yes = 0, no = 0;
+  for (const Cutter& c : {ball_cutter(6), flat_cutter(5), bull_nose_cutter(8, 1.5)}) {
+    const SweptTool tool{c, 20, 0.1};
+    for (const double cap : {0.0, 2.0}) {
+      std::vector<Vec3> tips{{X(rng), X(rng), Z(rng)}};
+      for (int i = 0; i < 300; ++i)
+        tips.push_back(tips.back() + Vec3(0.2 * U(rng), 0.2 * U(rng), 0.1 * U(rng)));
+      std::vector<MeshVerifier::MoveCheck> measured(tips.size() - 1), decided(tips.size() - 1);
+      verifier.check_path(tool, tips.data(), tips.size(), 1e-6, cap, measured.data());
+      verifier.check_path(tool, tips.data(), tips.size(), 1e-6, cap, decided.data(),
+                          MoveCheckMode::kDecide);
+      for (std::size_t k = 0; k < measured.size(); ++k) {
+        EXPECT_EQ(decided[k].gouge, measured[k].gouge > 0 ? INFINITY : 0.0) << k;
+        if (cap > 0) {
+          EXPECT_EQ(decided[k].clearance, measured[k].clearance) << k;
+        }
+        (measured[k].gouge > 0 ? yes : no) += 1;
+      }
+    }
+  }
+  EXPECT_GT(yes, 100);
+  EXPECT_GT(no, 100);
 }
 
 // A long job over a random terrain with many gouges: 1 thread, 2 threads and two chunks
