@@ -167,6 +167,7 @@ struct MeshVerifier::Impl {
   }
 
   void build(const TriangleMesh& mesh);
+  void set_grid(double lx, double ly, double hx, double hy, double mean_extent, std::size_t count);
   void build_grid();
   void build_tiles();
   template <class Matters, class Visit>
@@ -178,62 +179,103 @@ struct MeshVerifier::Impl {
                   const Vec3& lo, const Vec3& hi, Visit&& visit) const;
 };
 
+namespace {
+
+// The record of mesh facet i (vertices, plane, box; no grid cell yet); false when a vertex
+// is not finite.
+bool make_record(const TriangleMesh& mesh, std::size_t i, FacetRec& f) {
+  for (int k = 0; k < 3; ++k) {
+    f.p[k] = mesh.vertices[mesh.facets[i][k]];
+    if (!f.p[k].allFinite()) return false;
+  }
+  const Vec3 n = (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
+  const double len = n.norm();
+  f.n = len > 0 ? Vec3(n / len) : Vec3::Zero();
+  f.d_lo = std::min({f.n.dot(f.p[0]), f.n.dot(f.p[1]), f.n.dot(f.p[2])});
+  f.d_hi = std::max({f.n.dot(f.p[0]), f.n.dot(f.p[1]), f.n.dot(f.p[2])});
+  f.lo_x = std::min({f.p[0].x(), f.p[1].x(), f.p[2].x()});
+  f.hi_x = std::max({f.p[0].x(), f.p[1].x(), f.p[2].x()});
+  f.lo_y = std::min({f.p[0].y(), f.p[1].y(), f.p[2].y()});
+  f.hi_y = std::max({f.p[0].y(), f.p[1].y(), f.p[2].y()});
+  f.z_lo = std::min({f.p[0].z(), f.p[1].z(), f.p[2].z()});
+  f.z_hi = std::max({f.p[0].z(), f.p[1].z(), f.p[2].z()});
+  f.source = static_cast<std::uint32_t>(i);
+  return true;
+}
+
+// The xy box of mesh facet i; false when a vertex is not finite.
+bool facet_xy_box(const TriangleMesh& mesh, std::size_t i, Vec2& lo, Vec2& hi) {
+  lo = Vec2(kInf, kInf);
+  hi = Vec2(-kInf, -kInf);
+  for (int k = 0; k < 3; ++k) {
+    const Vec3& p = mesh.vertices[mesh.facets[i][k]];
+    if (!p.allFinite()) return false;
+    lo = lo.cwiseMin(p.head<2>());
+    hi = hi.cwiseMax(p.head<2>());
+  }
+  return true;
+}
+
+}  // namespace
+
+// Facets in row-major order of their first grid cell (the cell of their box's low corner),
+// in mesh order within a cell: the grid comes from one pass over the boxes in mesh order
+// (so the cell size has the same bits for any thread count), then (cell, facet) keys are
+// sorted and the records built in that order, in parallel.
 void MeshVerifier::Impl::build(const TriangleMesh& mesh) {
-  facets.reserve(mesh.facets.size());
-  for (std::size_t i = 0; i < mesh.facets.size(); ++i) {
-    FacetRec f;
-    bool finite = true;
-    for (int k = 0; k < 3; ++k) {
-      f.p[k] = mesh.vertices[mesh.facets[i][k]];
-      finite = finite && f.p[k].allFinite();
-    }
-    if (!finite) {
+  const std::size_t n = mesh.facets.size();
+  std::vector<std::uint32_t> usable;
+  usable.reserve(n);
+  double lx = kInf, ly = kInf, hx = -kInf, hy = -kInf, extent = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec2 lo, hi;
+    if (!facet_xy_box(mesh, i, lo, hi)) {
       ++skipped;
       continue;
     }
-    const Vec3 n = (f.p[1] - f.p[0]).cross(f.p[2] - f.p[0]);
-    const double len = n.norm();
-    f.n = len > 0 ? Vec3(n / len) : Vec3::Zero();
-    f.d_lo = std::min({f.n.dot(f.p[0]), f.n.dot(f.p[1]), f.n.dot(f.p[2])});
-    f.d_hi = std::max({f.n.dot(f.p[0]), f.n.dot(f.p[1]), f.n.dot(f.p[2])});
-    f.lo_x = std::min({f.p[0].x(), f.p[1].x(), f.p[2].x()});
-    f.hi_x = std::max({f.p[0].x(), f.p[1].x(), f.p[2].x()});
-    f.lo_y = std::min({f.p[0].y(), f.p[1].y(), f.p[2].y()});
-    f.hi_y = std::max({f.p[0].y(), f.p[1].y(), f.p[2].y()});
-    f.z_lo = std::min({f.p[0].z(), f.p[1].z(), f.p[2].z()});
-    f.z_hi = std::max({f.p[0].z(), f.p[1].z(), f.p[2].z()});
-    f.source = static_cast<std::uint32_t>(i);
-    facets.push_back(f);
+    usable.push_back(static_cast<std::uint32_t>(i));
+    lx = std::min(lx, lo.x());
+    ly = std::min(ly, lo.y());
+    hx = std::max(hx, hi.x());
+    hy = std::max(hy, hi.y());
+    extent += std::max(hi.x() - lo.x(), hi.y() - lo.y());
   }
+  if (usable.empty()) return;
+  set_grid(lx, ly, hx, hy, extent / static_cast<double>(usable.size()), usable.size());
+  std::vector<std::uint64_t> keys(usable.size());
+  par::for_each(keys.size(), 4096, [&](std::size_t k) {
+    Vec2 lo, hi;
+    facet_xy_box(mesh, usable[k], lo, hi);
+    const std::uint64_t c = static_cast<std::uint64_t>(cell_y(lo.y())) * nx + cell_x(lo.x());
+    keys[k] = c << 32 | usable[k];
+  });
+  std::vector<std::uint32_t>().swap(usable);
+  par::sort(keys.begin(), keys.end(), std::less<>());
+  facets.resize(keys.size());
+  par::for_each(keys.size(), 4096, [&](std::size_t k) {
+    FacetRec& f = facets[k];
+    make_record(mesh, keys[k] & 0xffffffffu, f);
+    f.ci = cell_x(f.lo_x);
+    f.cj = cell_y(f.lo_y);
+  });
   build_grid();
 }
 
-// Cells about the size of a facet (and about as many as facets), at most 4096 a side (cell
-// indices fit 16 bits).
-void MeshVerifier::Impl::build_grid() {
-  if (facets.empty()) return;
-  double lx = kInf, ly = kInf, hx = -kInf, hy = -kInf, extent = 0;
-  for (const FacetRec& f : facets) {
-    lx = std::min(lx, f.lo_x);
-    ly = std::min(ly, f.lo_y);
-    hx = std::max(hx, f.hi_x);
-    hy = std::max(hy, f.hi_y);
-    extent += std::max(f.hi_x - f.lo_x, f.hi_y - f.lo_y);
-  }
-  const double w = hx - lx, h = hy - ly, n = static_cast<double>(facets.size());
-  cell = std::max({extent / n, std::sqrt(w * h / n), w / 4096, h / 4096});
+// Cells about the size of a facet (mean extent) and about as many as facets, at most 4096 a
+// side (cell indices fit 16 bits).
+void MeshVerifier::Impl::set_grid(double lx, double ly, double hx, double hy, double mean_extent,
+                                  std::size_t count) {
+  const double w = hx - lx, h = hy - ly, n = static_cast<double>(count);
+  cell = std::max({mean_extent, std::sqrt(w * h / n), w / 4096, h / 4096});
   if (!(cell > 0)) cell = 1;
   x0 = lx;
   y0 = ly;
   nx = static_cast<std::int32_t>(w / cell) + 1;
   ny = static_cast<std::int32_t>(h / cell) + 1;
-  for (FacetRec& f : facets) {
-    f.ci = cell_x(f.lo_x);
-    f.cj = cell_y(f.lo_y);
-  }
-  std::stable_sort(facets.begin(), facets.end(), [](const FacetRec& a, const FacetRec& b) {
-    return a.cj != b.cj ? a.cj < b.cj : a.ci < b.ci;
-  });
+}
+
+// Cell entries (CSR) and tiles of the sorted facets.
+void MeshVerifier::Impl::build_grid() {
   // Count, scan, fill (facets in their order within each cell).
   std::vector<std::uint32_t> count(static_cast<std::size_t>(nx) * ny, 0);
   auto each_cell = [&](const FacetRec& f, auto&& body) {
