@@ -261,7 +261,7 @@ TEST(VerifyMesh, DecidingAGougeAgreesWithMeasuringIt) {
 }
 
 // A long job over a random terrain with many gouges: 1 thread, 2 threads and two chunks
-// merged give the same report.
+// merged give the same report, and so does a verifier whose grid was built on one thread.
 TEST(VerifyMesh, SameReportForAnyThreadCountAndChunking) {
   const TriangleMesh mesh = test::random_height_field(30, 40, 5, 9);
   const MeshVerifier verifier(mesh);
@@ -279,10 +279,12 @@ TEST(VerifyMesh, SameReportForAnyThreadCountAndChunking) {
   MeshVerifyParams params;
   params.worst = 20;
   const Cutter c = bull_nose_cutter(6, 1);
-  MeshVerifyReport one, two, chunked;
+  MeshVerifyReport one, two, chunked, built_alone;
   {
     par::ThreadLimit limit(1);
     one = verify_moves(verifier, c, all, params);
+    const MeshVerifier alone(mesh);  // its grid built on one thread
+    built_alone = verify_moves(alone, c, all, params);
   }
   {
     par::ThreadLimit limit(2);
@@ -292,7 +294,7 @@ TEST(VerifyMesh, SameReportForAnyThreadCountAndChunking) {
   }
   EXPECT_GT(one.gouging_moves, 100u);
   EXPECT_GT(one.rapid_moves, 100u);
-  for (const MeshVerifyReport* r : {&two, &chunked}) {
+  for (const MeshVerifyReport* r : {&two, &chunked, &built_alone}) {
     EXPECT_EQ(r->moves, one.moves);
     EXPECT_EQ(r->gouging_moves, one.gouging_moves);
     EXPECT_EQ(r->rapid_moves, one.rapid_moves);
