@@ -77,7 +77,7 @@ struct MeshVerifyReport {
   MoveViolation closest_rapid;       // the rapid of min_rapid_clearance (amount = that clearance)
   std::vector<MoveViolation> worst;  // largest gouge first, ties by lower move index
   std::size_t worst_capacity = 8;    // at most this many (params.worst)
-  std::uint64_t candidates = 0;      // facets met in the grid (statistics)
+  std::uint64_t candidates = 0;      // facets whose boxes met a move's (statistics)
   std::uint64_t gjk_calls = 0;       // GJK distance evaluations (statistics)
   std::string error;                 // empty unless the chunk was malformed (see verify_moves)
 };
@@ -107,7 +107,7 @@ class MeshVerifier {
     std::uint32_t gouge_facet = kNoMeshFacet;                    // mesh facet of the gouge
     double clearance = std::numeric_limits<double>::infinity();  // mm, min gap within the cap
     std::uint32_t clearance_facet = kNoMeshFacet;
-    std::uint32_t candidates = 0;  // facets met in the grid
+    std::uint32_t candidates = 0;  // facets of its group whose boxes met the move's
     std::uint32_t gjk_calls = 0;
   };
 
