@@ -145,7 +145,8 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
     const RasterStats st = run_raster(mesh, job.tool, job.raster, sink, control);
     o.points = st.cut_points + st.link_points + guard->stats().points_added;
     push_guard_stats(*guard, stats);
-    common(st.facets, st.facets_degenerate, st.index_s, st.compute_s, st.sink_s);
+    common(st.facets, st.facets_degenerate, st.index_s, st.compute_s,
+           st.sink_s - guard->seconds());  // the guard runs in the sink, before the writer
     stats.push_back({"lines", i64(st.lines), ""});
     stats.push_back({"cut_points", i64(st.cut_points), ""});
     stats.push_back({"link_points", i64(st.link_points), ""});

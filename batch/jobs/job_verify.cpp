@@ -1,8 +1,10 @@
 #include "batch/jobs/job_verify.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 #include <nlohmann/json.hpp>
 
@@ -186,6 +188,10 @@ const VerifyReport& JobVerifier::finish(std::vector<out::StatValue>& stats) {
   stats.push_back({"verify_min_clearance", report_.min_clearance, "mm"});
   stats.push_back({"verify_min_rapid_clearance", report_.min_rapid_clearance, "mm"});
   stats.push_back({"verify_s", seconds_, "s"});
+  // The checks ran inside the job's appends, which its write_s timed: take them out of it.
+  for (out::StatValue& s : stats)
+    if (double* w = std::get_if<double>(&s.value); w && s.name == "write_s")
+      *w = std::max(0.0, *w - seconds_);
   bound_stats(stats);
   return report_;
 }

@@ -27,7 +27,8 @@ class JobVerifier {
   void attach(out::ClJob& cl);
   // Checks the next run of paths (what attach() does with each append).
   void feed(const ClChunk& cl);
-  // Appends the statistics (verify_*) and returns the report.
+  // Appends the statistics (verify_*) and returns the report. The checks ran inside the
+  // job's appends: their time is taken out of the job's write_s, if it has one already.
   const VerifyReport& finish(std::vector<out::StatValue>& stats);
   // Detaches from cl and writes the worst locations (verify/worst).
   void write_worst(out::ClJob& cl);

@@ -126,6 +126,28 @@ params = { points = "xy.csv" }
   EXPECT_NE(v.output.find("probe: drop: not verified"), std::string::npos) << v.output;
 }
 
+// A raster job's output stage runs the chord guard, then the verifier (on each append),
+// then the HDF5 writing, one after another on one thread: their times are disjoint parts
+// of the job's, so write_s + chord_guard_s + verify_s cannot exceed total_s (write_s once
+// counted the other two as well).
+TEST(VerifyCli, WriteTimeLeavesOutTheGuardAndTheVerifier) {
+  const auto dir = h5::out_dir("verify_cli_times");
+  io::write_binary_stl(dir / "wavy.stl", test::height_field(40, 40, [](double x, double y) {
+                         return 3 + std::sin(x / 3) * std::cos(y / 2);
+                       }));
+  const auto out = dir / "out.h5";
+  const CmdResult r = ncpath("raster --mesh " + (dir / "wavy.stl").string() +
+                             " --tool ball:4 --interval 0.25 --step 0.05 --quiet --out " +
+                             out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(out);
+  const double write = stat(f, "raster", "write_s"), guard = stat(f, "raster", "chord_guard_s");
+  const double verify = stat(f, "raster", "verify_s"), total = stat(f, "raster", "total_s");
+  EXPECT_GE(write, 0);
+  EXPECT_GT(guard + verify, 0.2 * total);  // the stages this is about take real time
+  EXPECT_LE(write + guard + verify, total) << write << " " << guard << " " << verify;
+}
+
 TEST(VerifyCli, VerifyCommandReportsMissingFileAndJob) {
   EXPECT_EQ(ncpath("verify --in /nonexistent/x.h5").exit_code, 2);
   const auto dir = h5::out_dir("verify_cli_missing");
