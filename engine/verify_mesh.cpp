@@ -276,10 +276,8 @@ void MeshVerifier::Impl::build_grid() {
   std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
   for (std::size_t k = 0; k < facets.size(); ++k) {
     const FacetRec& f = facets[k];
-    float z_hi = static_cast<float>(f.z_hi);
-    if (z_hi < f.z_hi) z_hi = std::nextafter(z_hi, std::numeric_limits<float>::infinity());
     const Entry e{static_cast<std::uint32_t>(k), static_cast<std::uint16_t>(f.ci),
-                  static_cast<std::uint16_t>(f.cj), z_hi};
+                  static_cast<std::uint16_t>(f.cj), float_up(f.z_hi)};
     each_cell(f, [&](std::size_t c) { entries[fill[c]++] = e; });
   }
   build_tiles();
