@@ -16,7 +16,6 @@
 #include "batch/cli/huge_pages.hpp"
 #include "batch/jobs/job_spec.hpp"
 #include "engine/drop_index.hpp"
-#include "engine/facet_table.hpp"
 #include "engine/parallel.hpp"
 #include "engine/raster.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
@@ -49,8 +48,7 @@ Result run_raster_case(const TriangleMesh& mesh, const Cutter& tool, const Raste
 // kernel in the callback): the straightforward accelerated method.
 Result run_embree_baseline(const TriangleMesh& mesh, const Cutter& tool, const RasterParams& p,
                            double floor_z, const Aabb3& box) {
-  const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, tool);
+  const DropIndex index(mesh, tool, DropIndex::Facets::kPrepared);
   const std::size_t lines = raster_sample_count(box.hi.y() - box.lo.y(), p.interval);
   const std::size_t samples = raster_sample_count(box.hi.x() - box.lo.x(), p.step);
   std::vector<double> line_sum(lines);

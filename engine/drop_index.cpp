@@ -6,31 +6,41 @@
 #include <limits>
 
 #include "engine/embree_user_scene.hpp"
+#include "engine/parallel.hpp"
 
 namespace ncpath {
 
-namespace {
-
-// The per-query state Embree hands back to the intersection callback.
-struct QueryContext {
-  RTCIntersectContext rtc;  // must be first: Embree sees a pointer to it
-  const FacetTable* table;
-  const Cutter* cutter;
-  double x, y, z_top;
-  CutterContact best;
-};
-
-}  // namespace
-
 struct DropIndex::Impl {
-  const FacetTable* table;
+  // The per-query state Embree hands back to the intersection callback.
+  struct QueryContext {
+    RTCIntersectContext rtc;  // must be first: Embree sees a pointer to it
+    const Impl* index;
+    double x, y;
+    CutterContact best;
+  };
+
+  const TriangleMesh* mesh;
   Cutter cutter;
-  double z_top;
+  std::vector<std::uint32_t> kept;      // usable facets: primitive i is mesh.facets[kept[i]]
+  std::vector<PreparedFacet> prepared;  // kPrepared: primitive i prepared; else empty
+  double z_top = 1;
   EmbreeUserScene embree;
+
+  // Primitive i prepared, from the table or into `scratch`.
+  const PreparedFacet& facet(std::uint32_t i, PreparedFacet& scratch) const {
+    if (!prepared.empty()) return prepared[i];
+    prepare(kept[i], scratch);
+    return scratch;
+  }
+  bool prepare(std::size_t source, PreparedFacet& f) const {
+    const auto& v = mesh->facets[source];
+    return prepare_facet(mesh->vertices[v[0]], mesh->vertices[v[1]], mesh->vertices[v[2]], f);
+  }
 
   static void bounds(const RTCBoundsFunctionArguments* args) {
     const auto* self = static_cast<const Impl*>(args->geometryUserPtr);
-    const PreparedFacet& f = self->table->facets[args->primID];
+    PreparedFacet scratch;
+    const PreparedFacet& f = self->facet(args->primID, scratch);
     const double R = self->cutter.radius;
     RTCBounds* b = args->bounds_o;
     b->lower_x = pad_down(f.min_x - R);
@@ -45,11 +55,13 @@ struct DropIndex::Impl {
     if (!args->valid[0]) return;
     auto* q = reinterpret_cast<QueryContext*>(args->context);
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
-    const PreparedFacet& f = q->table->facets[args->primID];
-    if (drop_facet(*q->cutter, f, q->x, q->y, args->primID, q->best)) {
+    const Impl& m = *q->index;
+    PreparedFacet scratch;
+    const PreparedFacet& f = m.facet(args->primID, scratch);
+    if (drop_facet(m.cutter, f, q->x, q->y, m.kept[args->primID], q->best)) {
       // Shorten the ray to the new best tip, rounded so that boxes reaching exactly that
       // height are still visited (ties are decided in double, not by Embree).
-      const float t = static_cast<float>(q->z_top - q->best.tip_z);
+      const float t = static_cast<float>(m.z_top - q->best.tip_z);
       rh->ray.tfar = std::nextafter(t, std::numeric_limits<float>::infinity());
       rh->hit.geomID = args->geomID;
       rh->hit.primID = args->primID;
@@ -59,28 +71,49 @@ struct DropIndex::Impl {
   static void occluded(const RTCOccludedFunctionNArguments*) {}
 };
 
-DropIndex::DropIndex(const FacetTable& table, const Cutter& cutter)
+DropIndex::DropIndex(const TriangleMesh& mesh, const Cutter& cutter, Facets facets)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
-  m.table = &table;
+  m.mesh = &mesh;
   m.cutter = cutter;
-  m.z_top = table.box.empty() ? 1.0 : table.box.hi.z() + 1.0;
-  m.embree = EmbreeUserScene(table.facets.size(), &m, &Impl::bounds, &Impl::intersect,
+  const std::size_t n = mesh.facets.size();
+  std::vector<std::uint8_t> usable(n, 0);
+  par::for_each(n, 4096, [&](std::size_t i) {
+    PreparedFacet f;
+    usable[i] = m.prepare(i, f);
+  });
+  Aabb3 box;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!usable[i]) continue;
+    m.kept.push_back(static_cast<std::uint32_t>(i));
+    for (int k = 0; k < 3; ++k) box.add(mesh.vertices[mesh.facets[i][k]]);
+  }
+  m.z_top = box.empty() ? 1.0 : box.hi.z() + 1.0;
+  const bool small = m.kept.size() * sizeof(PreparedFacet) <= kPreparedTableBytes;
+  if (facets == Facets::kPrepared || (facets == Facets::kAuto && small)) {
+    m.prepared.resize(m.kept.size());
+    par::for_each(m.kept.size(), 4096,
+                  [&](std::size_t i) { m.prepare(m.kept[i], m.prepared[i]); });
+  }
+  m.embree = EmbreeUserScene(m.kept.size(), &m, &Impl::bounds, &Impl::intersect,
                              &Impl::occluded, RTC_SCENE_FLAG_ROBUST);
 }
 
 DropIndex::~DropIndex() = default;
 
+std::uint64_t DropIndex::facet_count() const { return impl_->kept.size(); }
+std::uint64_t DropIndex::degenerate() const {
+  return impl_->mesh->facets.size() - impl_->kept.size();
+}
+
 CutterContact DropIndex::query(double x, double y) const {
   const Impl& m = *impl_;
-  QueryContext q;
+  Impl::QueryContext q;
   rtcInitIntersectContext(&q.rtc);
-  q.table = m.table;
-  q.cutter = &m.cutter;
+  q.index = &m;
   q.x = x;
   q.y = y;
-  q.z_top = m.z_top;
-  if (m.table->facets.empty()) return q.best;
+  if (m.kept.empty()) return q.best;
   RTCRayHit rh{};
   rh.ray.org_x = static_cast<float>(x);
   rh.ray.org_y = static_cast<float>(y);

@@ -6,7 +6,6 @@
 #include <string>
 
 #include "engine/drop_index.hpp"
-#include "engine/facet_table.hpp"
 #include "engine/parallel.hpp"
 
 namespace ncpath {
@@ -25,10 +24,9 @@ DropPointsStats run_drop_points(const TriangleMesh& mesh, const Cutter& cutter,
 
   DropPointsStats st;
   Stopwatch index_clock;
-  const FacetTable table = build_facet_table(mesh);
-  st.facets = table.facets.size();
-  st.facets_degenerate = table.degenerate;
-  const DropIndex index(table, cutter);
+  const DropIndex index(mesh, cutter, DropIndex::Facets::kPrepared);
+  st.facets = index.facet_count();
+  st.facets_degenerate = index.degenerate();
   st.index_s = index_clock.seconds();
 
   constexpr std::size_t kChunkPoints = 1 << 16;

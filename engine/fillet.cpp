@@ -8,7 +8,6 @@
 #include <stdexcept>
 
 #include "engine/drop_index.hpp"
-#include "engine/facet_table.hpp"
 #include "engine/mesh_distance.hpp"
 #include "engine/parallel.hpp"
 #include "engine/surface_check.hpp"
@@ -90,8 +89,7 @@ FilletResult run_fillet(const TriangleMesh& mesh, const Cutter& cutter, const Fi
 
   Stopwatch rays_clock;
   const MeshDistance distance(mesh);
-  const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, grown);
+  const DropIndex index(mesh, grown);
   const double floor_z = p.pencil.floor_z.value_or(bounding_box(mesh).lo.z());
   const PartProbe part{index, distance, rc, floor_z, bounding_box(mesh).hi.z()};
   const double step =

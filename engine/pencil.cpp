@@ -7,7 +7,6 @@
 #include <stdexcept>
 
 #include "engine/drop_index.hpp"
-#include "engine/facet_table.hpp"
 #include "engine/mesh_distance.hpp"
 #include "engine/parallel.hpp"
 #include "engine/pencil_crease.hpp"
@@ -257,8 +256,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
 
   // The point drop-cutter (Embree, exact in double): checks refined points and chords.
   Stopwatch index_clock;
-  const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, cutter);
+  const DropIndex index(mesh, cutter);
   st.index_s += index_clock.seconds();
   auto deficit_at = [&](const Vec3& q) { return surface_deficit(index, floor_z, q); };
   const PartProbe part{index, distance, cutter.radius, floor_z, bounding_box(mesh).hi.z()};

@@ -20,7 +20,10 @@ void expect_index_matches_brute_force(const TriangleMesh& mesh, int points, unsi
   std::uniform_real_distribution<double> X(box.lo.x() - 3, box.hi.x() + 3);
   std::uniform_real_distribution<double> Y(box.lo.y() - 3, box.hi.y() + 3);
   for (const Cutter& c : kCutters) {
-    const DropIndex index(table, c);
+    const DropIndex index(mesh, c, DropIndex::Facets::kOnDemand);
+    const DropIndex stored(mesh, c, DropIndex::Facets::kPrepared);
+    ASSERT_EQ(index.facet_count(), table.facets.size());
+    ASSERT_EQ(index.degenerate(), table.degenerate);
     int touched = 0;
     for (int i = 0; i < points; ++i) {
       const double x = X(rng), y = Y(rng);
@@ -28,9 +31,22 @@ void expect_index_matches_brute_force(const TriangleMesh& mesh, int points, unsi
       const CutterContact slow = drop_brute_force(table, c, x, y);
       ASSERT_EQ(fast.kind == ContactKind::kNone, slow.kind == ContactKind::kNone)
           << cutter_type_name(c.type) << " at " << x << "," << y;
+      // Facets prepared on demand or stored: the same bits and the same facet.
+      const CutterContact kept = stored.query(x, y);
+      ASSERT_EQ(kept.kind, fast.kind);
       if (slow.kind == ContactKind::kNone) continue;
       ++touched;
       ASSERT_NEAR(fast.tip_z, slow.tip_z, 1e-9) << cutter_type_name(c.type) << " " << x << "," << y;
+      ASSERT_EQ(kept.tip_z, fast.tip_z);
+      ASSERT_EQ(kept.facet, fast.facet);
+      // The contact's facet is the mesh's: alone, it gives that height.
+      ASSERT_LT(fast.facet, mesh.facets.size());
+      const auto& v = mesh.facets[fast.facet];
+      PreparedFacet f;
+      ASSERT_TRUE(prepare_facet(mesh.vertices[v[0]], mesh.vertices[v[1]], mesh.vertices[v[2]], f));
+      CutterContact alone;
+      ASSERT_TRUE(drop_facet(c, f, x, y, fast.facet, alone));
+      ASSERT_EQ(alone.tip_z, fast.tip_z);
     }
     EXPECT_GT(touched, points / 2);
   }
@@ -42,6 +58,18 @@ TEST(DropIndex, EqualsBruteForceOnRandomHeightField) {
 
 TEST(DropIndex, EqualsBruteForceOnRandomSoup) {
   expect_index_matches_brute_force(test::random_soup(3000, 60, 20, 4, 3), 10000, 4);
+}
+
+// Degenerate facets among the others: left out, and the contacts still name mesh facets.
+TEST(DropIndex, EqualsBruteForceWithDegenerateFacets) {
+  TriangleMesh mesh = test::random_soup(2000, 60, 20, 4, 5);
+  const std::size_t n = mesh.facets.size();
+  for (std::size_t i = 0; i < n; i += 7) {
+    const auto f = mesh.facets[i];
+    mesh.facets.insert(mesh.facets.begin() + static_cast<std::ptrdiff_t>(i), {f[0], f[1], f[1]});
+  }
+  ASSERT_GT(mesh.facets.size(), n);
+  expect_index_matches_brute_force(mesh, 5000, 6);
 }
 
 // Every cutter on a tessellated hemisphere of radius S. Analytic answer for the true
@@ -64,7 +92,7 @@ TEST(DropIndex, EveryCutterOnHemisphereBracketedByAnalyticSpheres) {
   const double edge = 2 * S * std::sin(M_PI / 240) + S * (M_PI / 2) / 60;
   const double sag = S - std::sqrt(S * S - edge * edge);
   for (const Cutter& c : {ball_cutter(5), flat_cutter(5), bull_nose_cutter(5, 1)}) {
-    const DropIndex index(table, c);
+    const DropIndex index(mesh, c);
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> U(-20, 20);
     for (int i = 0; i < 5000; ++i) {
@@ -82,7 +110,7 @@ TEST(DropIndex, BallNeverPenetratesAnyFacet) {
   const TriangleMesh mesh = test::random_height_field(30, 40, 6, 9);
   const FacetTable table = build_facet_table(mesh);
   const double R = 2.5;
-  const DropIndex index(table, ball_cutter(2 * R));
+  const DropIndex index(mesh, ball_cutter(2 * R));
   std::mt19937_64 rng(6);
   std::uniform_real_distribution<double> U(0, 40);
   for (int i = 0; i < 2000; ++i) {
@@ -105,7 +133,7 @@ TEST(DropIndex, FlatAndBullNeverGouge) {
   std::mt19937_64 rng(8);
   std::uniform_real_distribution<double> U(0, 30);
   for (const Cutter& c : {flat_cutter(5), bull_nose_cutter(5, 1)}) {
-    const DropIndex index(table, c);
+    const DropIndex index(mesh, c);
     for (int i = 0; i < 300; ++i) {
       const double x = U(rng), y = U(rng);
       const CutterContact got = index.query(x, y);

@@ -28,7 +28,7 @@ TEST_P(RealMesh, EmbreeIndexEqualsBruteForce) {
   std::uniform_real_distribution<double> X(table.box.lo.x(), table.box.hi.x());
   std::uniform_real_distribution<double> Y(table.box.lo.y(), table.box.hi.y());
   for (const Cutter& c : kCutters) {
-    const DropIndex index(table, c);
+    const DropIndex index(mesh, c);
     int touched = 0;
     for (int i = 0; i < 10000; ++i) {
       const double x = X(rng), y = Y(rng);

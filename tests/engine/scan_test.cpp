@@ -339,8 +339,7 @@ TEST_P(ScanRealMesh, SegmentsEqualDropCutterAndKinksAreJunctions) {
   p.families = ScanFamilies::kBoth;
   p.interval = 10;
   const Collected c = scan(mesh, ball, p);
-  const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, ball);
+  const DropIndex index(mesh, ball);
   auto drop = [&](double x, double y) { return index.query(x, y).tip_z; };
   std::mt19937_64 rng(17);
   EXPECT_EQ(check_segments(c, c.stats.floor_z, rng, 10000, drop), 10000);

@@ -9,7 +9,6 @@
 
 #include <cmath>
 
-#include "engine/facet_table.hpp"
 
 namespace ncpath {
 namespace {
@@ -27,12 +26,10 @@ TriangleMesh wall(double b) {
 }
 
 struct Probe {
-  explicit Probe(const TriangleMesh& mesh)
-      : table(build_facet_table(mesh)),
-        index(table, ball_cutter(2 * kR)),
-        distance(mesh),
+  explicit Probe(const TriangleMesh& m)
+      : mesh(m), index(mesh, ball_cutter(2 * kR)), distance(mesh),
         part{index, distance, kR, -100, 10} {}
-  FacetTable table;
+  TriangleMesh mesh;
   DropIndex index;
   MeshDistance distance;
   PartProbe part;

@@ -230,8 +230,7 @@ TEST(ZLevel, BunnyContoursTouchTheLevel) {
   ZLevelOpParams p;
   const Aabb3 box = bounding_box(mesh);
   for (double f : {0.2, 0.5, 0.8}) p.levels.push_back(box.lo.z() + f * (box.hi.z() - box.lo.z()));
-  const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, ball);
+  const DropIndex index(mesh, ball);
   auto drop = [&](double x, double y) { return index.query(x, y).tip_z; };
   for (const bool condition : {false, true}) {
     p.condition = condition;
@@ -289,8 +288,7 @@ TEST(ZLevel, SubdividedFloat32CadPartClosesEveryContour) {
   EXPECT_EQ(c.stats.levels, 171u);
   EXPECT_EQ(c.stats.open_chains, 0u);
   EXPECT_GT(c.stats.repaired_links, 0u);
-  const FacetTable table = build_facet_table(mesh);
-  const DropIndex index(table, ball);
+  const DropIndex index(mesh, ball);
   auto drop = [&](double x, double y) { return index.query(x, y).tip_z; };
   std::mt19937_64 rng(5);
   EXPECT_EQ(check_on_contours(c, drop, rng, 2000, false), 2000);
