@@ -32,6 +32,7 @@
 // orders, so the report is identical for any thread count. MeshVerifier is built once per
 // mesh and queried concurrently (const, no shared mutable state).
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -143,6 +144,11 @@ class MeshVerifier {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// A mesh's swept-tool index, asked for when first needed (e.g. a batch's shared index, built
+// on its first call): a pencil or fillet job then builds it only after its own largest
+// structures are freed, so the two never take memory at once.
+using SweptIndexSource = std::function<std::shared_ptr<const MeshVerifier>()>;
 
 // Verifies every move of the chunk: moves of kCut and kLinkAtDepth paths for gouges, moves of
 // kRapid paths for gouges and clearance. Moves are numbered from first_move_index in chunk

@@ -23,7 +23,8 @@ std::unique_ptr<jobs::JobVerifier> verifier_for(const jobs::JobSpec& spec) {
   io::MeshReadResult in = io::read_mesh(spec.input);
   const TransformOutcome tr = apply_transform(spec.transform, in.mesh);
   if (!tr.ok()) throw std::invalid_argument("transform." + tr.error);
-  return jobs::mesh_verifier(spec, std::make_shared<const MeshVerifier>(in.mesh));
+  auto index = std::make_shared<const MeshVerifier>(in.mesh);
+  return jobs::mesh_verifier(spec, [index] { return index; });
 }
 
 // Checks one stored job; prints its line. Returns true when it is clean.

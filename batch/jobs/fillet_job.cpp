@@ -56,7 +56,7 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
 }  // namespace
 
 FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh,
-                                std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
+                                const SweptIndexSource& swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats,
                                 const ConditionedMesh* conditioned) {
@@ -66,7 +66,7 @@ FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh,
   summary.compute_s = compute_clock.seconds();
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 
-  ChordGuard guard(std::move(swept), job.tool, job.fillet.stock);
+  ChordGuard guard(swept(), job.tool, job.fillet.stock);
   const ClChunk c = guard.apply(fillet_chunk(r));
   Stopwatch write_clock;
   cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);

@@ -28,11 +28,12 @@ struct FilletJobSummary {
   double compute_s = 0;      // run_fillet: the reference pencil run and the passes
 };
 
-// mesh: already transformed; swept: its swept-tool index (the chord guard's). Throws
+// mesh: already transformed; swept: its swept-tool index (the chord guard's), asked for after
+// the computation, whose structures are freed by then. Throws
 // std::invalid_argument when the tool is not a ball, is not smaller than the reference, or the
 // parameters are bad (the engine's message); Cancelled.
 FilletJobSummary run_fillet_job(const JobSpec& job, const TriangleMesh& mesh,
-                                std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
+                                const SweptIndexSource& swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats,
                                 const ConditionedMesh* conditioned = nullptr);

@@ -71,11 +71,10 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
   stats.push_back({"read_s", use.seconds, "s"});
   stats.push_back({"mesh_shared", std::int64_t{use.shared}, ""});
   // The point operation is a probe: its points are answers, not moves to run.
+  // Its index is built at the first check (statistic verify_index_s).
   if (job.verify != VerifyMode::kOff && job.operation != Operation::kDrop) {
-    Stopwatch index_clock;
-    verifier = mesh_verifier(job, shared.swept_index());
+    verifier = mesh_verifier(job, [mesh = use.mesh] { return mesh->swept_index(); });
     if (verifier) verifier->attach(cl);
-    stats.push_back({"verify_index_s", index_clock.seconds(), "s"});
   }
 
   const TriangleMesh& mesh = shared.mesh();
@@ -104,16 +103,18 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
     o.compute_s = r.compute_s;
     return;
   }
+  // Pencil and fillet jobs ask for the swept-tool index after their computation.
+  const SweptIndexSource swept = [&] { return timed_swept_index(shared, stats); };
   if (job.operation == Operation::kPencil) {
-    const PencilJobSummary r = run_pencil_job(job, mesh, timed_swept_index(shared, stats), cl,
-                                              gcode, control, stats, conditioned.get());
+    const PencilJobSummary r = run_pencil_job(job, mesh, swept, cl, gcode, control, stats,
+                                              conditioned.get());
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;
   }
   if (job.operation == Operation::kFillet) {
-    const FilletJobSummary r = run_fillet_job(job, mesh, timed_swept_index(shared, stats), cl,
-                                              gcode, control, stats, conditioned.get());
+    const FilletJobSummary r = run_fillet_job(job, mesh, swept, cl, gcode, control, stats,
+                                              conditioned.get());
     o.points = r.points;
     o.compute_s = r.compute_s;
     return;

@@ -43,8 +43,11 @@ class JobVerifier {
   // Checks one run of paths (moves numbered from first_move, paths from first_path).
   virtual VerifyReport check(const ClChunk& cl, std::uint64_t first_move,
                              std::uint32_t first_path) = 0;
-  // Statistics of the operation's own bounds (pocket3d: the scallop), after the last chunk.
+  // Statistics of the verifier's own, after the last chunk: the operation's bounds
+  // (pocket3d: the scallop), the mesh index's build time (verify_index_s).
   virtual void bound_stats(std::vector<out::StatValue>&) {}
+  // Of the time check() took, what went into building the verifier's index (not verify_s).
+  virtual double index_seconds() const { return 0; }
 
  private:
   VerifyMode mode_;
@@ -61,9 +64,9 @@ class JobVerifier {
 std::unique_ptr<JobVerifier> profile_verifier(const JobSpec& job);
 
 // For mesh jobs: the swept-tool index of the mesh as the job uses it (transformed), e.g.
-// SharedMesh::swept_index() (the verifier only reads it).
-std::unique_ptr<JobVerifier> mesh_verifier(const JobSpec& job,
-                                           std::shared_ptr<const MeshVerifier> index);
+// SharedMesh::swept_index() (the verifier only reads it), asked for at the first check; its
+// time is the statistic verify_index_s (0 when the chord guard or an earlier job built it).
+std::unique_ptr<JobVerifier> mesh_verifier(const JobSpec& job, SweptIndexSource index);
 
 // For pocket3d jobs: the walls and islands as above, the ball against the exact bottom, and
 // the realised scallop on a grid (stats verify_max_scallop, verify_scallop_bound).

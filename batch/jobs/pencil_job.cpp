@@ -82,7 +82,7 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
 }  // namespace
 
 PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh,
-                                std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
+                                const SweptIndexSource& swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats,
                                 const ConditionedMesh* conditioned) {
@@ -92,7 +92,7 @@ PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh,
   summary.compute_s = compute_clock.seconds();
   if (control.progress) control.progress(1, 1);  // not streamed: all at once
 
-  ChordGuard guard(std::move(swept), job.tool, job.pencil.stock);
+  ChordGuard guard(swept(), job.tool, job.pencil.stock);
   const ClChunk c = guard.apply(pencil_chunk(r));
   Stopwatch write_clock;
   cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);

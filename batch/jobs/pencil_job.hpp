@@ -28,11 +28,12 @@ struct PencilJobSummary {
   double compute_s = 0;      // run_pencil, all stages
 };
 
-// mesh: already transformed; swept: its swept-tool index (the chord guard's). Throws
+// mesh: already transformed; swept: its swept-tool index (the chord guard's), asked for after
+// the computation, whose structures are freed by then. Throws
 // std::invalid_argument when the tool is not a ball, the parameters are bad or the mesh has no
 // usable facet (the engine's message); Cancelled.
 PencilJobSummary run_pencil_job(const JobSpec& job, const TriangleMesh& mesh,
-                                std::shared_ptr<const MeshVerifier> swept, out::ClJob& cl,
+                                const SweptIndexSource& swept, out::ClJob& cl,
                                 out::GcodeWriter* gcode, RunControl& control,
                                 std::vector<out::StatValue>& stats,
                                 const ConditionedMesh* conditioned = nullptr);
