@@ -30,8 +30,8 @@ std::uint64_t bytes_per_facet(Operation op) {
     case Operation::kDrop: return 900;
     case Operation::kScan: return 1500;
     case Operation::kZLevel: return 2000;
-    case Operation::kPencil: return 2200;
-    case Operation::kFillet: return 2200;
+    case Operation::kPencil: return 1250;
+    case Operation::kFillet: return 1250;
     default: return 0;
     // clang-format on
   }
