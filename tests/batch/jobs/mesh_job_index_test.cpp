@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "batch/jobs/fillet_job.hpp"
@@ -37,55 +38,52 @@ SweptIndexSource source(Watch& w, const TriangleMesh& mesh) {
   };
 }
 
-std::filesystem::path temp_file(const char* name) {
-  return std::filesystem::temp_directory_path() / name;
+// Runs the job on a box pocket with a watched index source: the job writes points, and asks
+// for the index once, after its computation.
+template <class RunJob>
+void expect_index_after_computation(const JobSpec& job, RunJob run_job) {
+  const TriangleMesh mesh = scan_test::box_pocket();
+  Watch w;
+  RunControl control;
+  watch(control, w);
+  const std::string name = operation_name(job.operation);
+  const auto path = std::filesystem::temp_directory_path() / ("ncpath_index_" + name + ".h5");
+  {
+    out::ClFile file(path, "0");
+    out::ClJob cl = file.begin_job(name, {name, "box", "", "{}", "{}"});
+    std::vector<out::StatValue> stats;
+    EXPECT_GT(run_job(job, mesh, source(w, mesh), cl, control, stats).points, 0u);
+    cl.close();
+    file.close();
+  }
+  EXPECT_EQ(w.calls, 1);
+  EXPECT_TRUE(w.after_compute);
+  std::filesystem::remove(path);
 }
 
 TEST(MeshJobIndex, PencilAsksForTheSweptIndexAfterItsComputation) {
-  const TriangleMesh mesh = scan_test::box_pocket();
   JobSpec job;
   job.operation = Operation::kPencil;
   job.tool = ball_cutter(2.5);
   job.pencil.step_down = 0.3;
-  Watch w;
-  RunControl control;
-  watch(control, w);
-  const auto path = temp_file("ncpath_mesh_job_index_pencil.h5");
-  out::ClFile file(path, "0");
-  out::ClJob cl = file.begin_job("pencil", {"pencil", "box", "", "{}", "{}"});
-  std::vector<out::StatValue> stats;
-  const PencilJobSummary s =
-      run_pencil_job(job, mesh, source(w, mesh), cl, nullptr, control, stats);
-  EXPECT_GT(s.points, 0u);
-  EXPECT_EQ(w.calls, 1);
-  EXPECT_TRUE(w.after_compute);
-  cl.close();
-  file.close();
-  std::filesystem::remove(path);
+  expect_index_after_computation(job, [](const JobSpec& j, const TriangleMesh& m,
+                                         const SweptIndexSource& s, out::ClJob& cl,
+                                         RunControl& c, std::vector<out::StatValue>& st) {
+    return run_pencil_job(j, m, s, cl, nullptr, c, st);
+  });
 }
 
 TEST(MeshJobIndex, FilletAsksForTheSweptIndexAfterItsComputation) {
-  const TriangleMesh mesh = scan_test::box_pocket();
   JobSpec job;
   job.operation = Operation::kFillet;
   job.tool = ball_cutter(1);
   job.fillet.reference_diameter = 2.5;
   job.fillet.pencil.step_down = 0.3;
-  Watch w;
-  RunControl control;
-  watch(control, w);
-  const auto path = temp_file("ncpath_mesh_job_index_fillet.h5");
-  out::ClFile file(path, "0");
-  out::ClJob cl = file.begin_job("fillet", {"fillet", "box", "", "{}", "{}"});
-  std::vector<out::StatValue> stats;
-  const FilletJobSummary s =
-      run_fillet_job(job, mesh, source(w, mesh), cl, nullptr, control, stats);
-  EXPECT_GT(s.points, 0u);
-  EXPECT_EQ(w.calls, 1);
-  EXPECT_TRUE(w.after_compute);
-  cl.close();
-  file.close();
-  std::filesystem::remove(path);
+  expect_index_after_computation(job, [](const JobSpec& j, const TriangleMesh& m,
+                                         const SweptIndexSource& s, out::ClJob& cl,
+                                         RunControl& c, std::vector<out::StatValue>& st) {
+    return run_fillet_job(j, m, s, cl, nullptr, c, st);
+  });
 }
 
 }  // namespace
