@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>  // cross
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "engine/parallel.hpp"
@@ -134,7 +135,12 @@ struct MeshVerifier::Impl {
     std::uint16_t ci, cj;
     float z_hi;
   };
-  std::vector<std::uint32_t> cell_start;  // nx * ny + 1 offsets into entries (CSR)
+  // A cell's entries (CSR: cell_start, nx * ny + 1 offsets) come in three runs: the facets
+  // whose first cell it is, up to a_end; those whose first cell lies to its left in its row,
+  // up to b_end; those whose first cell lies in an earlier row. A query visits each facet at
+  // its first cell within the query: the first run everywhere, the second in the query's
+  // first column, the third (tested) in its first row only.
+  std::vector<std::uint32_t> cell_start, a_end, b_end;
   std::vector<Entry> entries;
   // Tiles of kTile x kTile cells, each bounding every facet registered in its cells (xy box
   // and top): a query dismisses a whole tile when no facet in it can matter.
@@ -260,25 +266,36 @@ void MeshVerifier::Impl::set_grid(double lx, double ly, double hx, double hy, do
   ny = static_cast<std::int32_t>(h / cell) + 1;
 }
 
-// Cell entries (CSR) and tiles of the sorted facets.
+// Cell entries (CSR, three runs a cell) and tiles of the sorted facets.
 void MeshVerifier::Impl::build_grid() {
-  // Count, scan, fill (facets in their order within each cell).
-  std::vector<std::uint32_t> count(static_cast<std::size_t>(nx) * ny, 0);
+  // Count, scan, fill (facets in their order within each run). Run of cell (i, j) for a
+  // facet: 0 its first cell, 1 further along its first row, 2 a later row.
+  const std::size_t cells = static_cast<std::size_t>(nx) * ny;
+  std::vector<std::array<std::uint32_t, 3>> count(cells, {0, 0, 0});
   auto each_cell = [&](const FacetRec& f, auto&& body) {
     const std::int32_t i1 = cell_x(f.hi_x), j1 = cell_y(f.hi_y);
     for (std::int32_t j = f.cj; j <= j1; ++j)
-      for (std::int32_t i = f.ci; i <= i1; ++i) body(static_cast<std::size_t>(j) * nx + i);
+      for (std::int32_t i = f.ci; i <= i1; ++i)
+        body(static_cast<std::size_t>(j) * nx + i, j > f.cj ? 2 : i > f.ci ? 1 : 0);
   };
-  for (const FacetRec& f : facets) each_cell(f, [&](std::size_t c) { ++count[c]; });
-  cell_start.assign(count.size() + 1, 0);
-  par::exclusive_scan<std::uint32_t, std::uint32_t>(count, cell_start);
+  for (const FacetRec& f : facets) each_cell(f, [&](std::size_t c, int run) { ++count[c][run]; });
+  std::vector<std::uint32_t> total(cells);
+  for (std::size_t c = 0; c < cells; ++c) total[c] = count[c][0] + count[c][1] + count[c][2];
+  cell_start.assign(cells + 1, 0);
+  par::exclusive_scan<std::uint32_t, std::uint32_t>(total, cell_start);
+  a_end.resize(cells);
+  b_end.resize(cells);
+  for (std::size_t c = 0; c < cells; ++c) {
+    a_end[c] = cell_start[c] + count[c][0];
+    b_end[c] = a_end[c] + count[c][1];
+  }
   entries.resize(cell_start.back());
-  std::vector<std::uint32_t> fill(cell_start.begin(), cell_start.end() - 1);
+  for (std::size_t c = 0; c < cells; ++c) count[c] = {cell_start[c], a_end[c], b_end[c]};
   for (std::size_t k = 0; k < facets.size(); ++k) {
     const FacetRec& f = facets[k];
     const Entry e{static_cast<std::uint32_t>(k), static_cast<std::uint16_t>(f.ci),
                   static_cast<std::uint16_t>(f.cj), float_up(f.z_hi)};
-    each_cell(f, [&](std::size_t c) { entries[fill[c]++] = e; });
+    each_cell(f, [&](std::size_t c, int run) { entries[count[c][run]++] = e; });
   }
   build_tiles();
 }
@@ -334,17 +351,20 @@ void MeshVerifier::Impl::visit_cell(std::int32_t i, std::int32_t j, std::int32_t
                                     std::int32_t j0, const Vec3& lo, const Vec3& hi,
                                     Visit&& visit) const {
   const std::size_t c = static_cast<std::size_t>(j) * nx + i;
-  for (std::uint32_t k = cell_start[c]; k < cell_start[c + 1]; ++k) {
-    const Entry& e = entries[k];
-    if (std::max<std::int32_t>(e.ci, i0) != i || std::max<std::int32_t>(e.cj, j0) != j ||
-        e.z_hi < lo.z())
-      continue;  // seen in an earlier cell, or below the box
+  auto consider = [&](const Entry& e) {
+    if (e.z_hi < lo.z()) return;  // below the box
     const FacetRec& f = facets[e.facet];
     if (f.hi_x < lo.x() || f.lo_x > hi.x() || f.hi_y < lo.y() || f.lo_y > hi.y() ||
         f.z_hi < lo.z() || f.z_lo > hi.z())
-      continue;
+      return;
     visit(f);
-  }
+  };
+  // The facets whose first cell within the query is this one (see cell_start).
+  const std::uint32_t end = i == i0 ? b_end[c] : a_end[c];
+  for (std::uint32_t k = cell_start[c]; k < end; ++k) consider(entries[k]);
+  if (j != j0) return;
+  for (std::uint32_t k = b_end[c]; k < cell_start[c + 1]; ++k)
+    if (std::max<std::int32_t>(entries[k].ci, i0) == i) consider(entries[k]);
 }
 
 MeshVerifier::MeshVerifier(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {

@@ -171,6 +171,34 @@ TEST(VerifyMesh, EqualsBruteForceOverAllFacets) {
   EXPECT_GT(gouging, 100);
 }
 
+// Facets that start far outside a move's box and reach into it (a sliver along y whose first
+// grid cell is rows below the query, one along x whose first cell is columns to its left)
+// are found, beside a floor of small facets that keeps the grid's cells small: the gouge
+// equals the scan of every facet, about the 1 mm the slivers stand above the tip.
+TEST(VerifyMesh, LongFacetsReachingIntoTheQueryAreFound) {
+  TriangleMesh mesh = test::height_field(100, 50, [](double, double) { return 0.0; });
+  auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const auto n = static_cast<std::uint32_t>(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), {a, b, c});
+    mesh.facets.push_back({n, n + 1, n + 2});
+  };
+  add(Vec3(25, -100, 5), Vec3(25.2, -100, 5), Vec3(25.1, 100, 5));  // along y, from far below
+  add(Vec3(-100, 25, 5), Vec3(-100, 25.2, 5), Vec3(100, 25.1, 5));  // along x, from far left
+  const MeshVerifier verifier(mesh);
+  const SweptTool tool{ball_cutter(2 * kR), 20, 0};
+  const std::pair<Vec3, Vec3> moves[] = {{Vec3(20, 40, 4), Vec3(30, 40, 4)},
+                                         {Vec3(40, 20, 4), Vec3(40, 30, 4)}};
+  for (const auto& [p0, p1] : moves) {
+    double gouge = 0;
+    for (const auto& f : mesh.facets)
+      gouge = std::max(gouge, swept_gouge(tool, p0, p1, mesh.vertices[f[0]],
+                                          mesh.vertices[f[1]], mesh.vertices[f[2]]));
+    const MeshVerifier::MoveCheck got = verifier.check_move(tool, p0, p1, 1e-6, 0);
+    EXPECT_GT(gouge, 0.9);
+    EXPECT_NEAR(got.gouge, gouge, 3e-9) << p0.transpose() << " -> " << p1.transpose();
+  }
+}
+
 void expect_same_check(const MeshVerifier::MoveCheck& got, const MeshVerifier::MoveCheck& want,
                        const std::string& what) {
   EXPECT_EQ(got.gouge, want.gouge) << what;
