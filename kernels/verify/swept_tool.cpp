@@ -477,8 +477,9 @@ Cutter swept_profile(const SweptTool& tool) {
 double swept_plane_gap(const SweptTool& tool, const Vec3& p0, const Vec3& p1, const Vec3& n,
                        double d_lo, double d_hi) {
   const Body b = verified_body(tool, p0, p1);
-  // Extent of K along n: the segment's ends, the cylinder's rim and its two heights.
-  const double rim = b.core.a * std::hypot(n.x(), n.y());
+  // Extent of K along n: the segment's ends, the cylinder's rim and its two heights (a ball's
+  // cylinder is its axis: no rim, and no hypot, dear in a check's inner loop).
+  const double rim = b.core.a > 0 ? b.core.a * std::hypot(n.x(), n.y()) : 0.0;
   const double z_lo = std::min(n.z() * b.core.z0, n.z() * b.core.z1);
   const double z_hi = std::max(n.z() * b.core.z0, n.z() * b.core.z1);
   const double seg = n.dot(b.core.m), base = n.dot(p0);
