@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -14,10 +15,7 @@
 #include "engine/surface_check.hpp"
 #include "engine/zlevel.hpp"
 #include "kernels/cleanup/pencil.hpp"
-#include "kernels/mesh/closest_point.hpp"
 #include "kernels/scan/envelope.hpp"
-#include <functional>
-#include <map>
 
 namespace ncpath {
 
@@ -49,47 +47,22 @@ std::string validate(const PencilParams& p) {
 
 namespace {
 
-Vec3 tangent_of(const PencilCandidate& c) { return crease_tangent(c.b1, c.b2); }
-
-// Appends the refined points strictly between A and B (A and B excluded).
-// Refined when the chord's error bound exceeds tol or its middle is below the CL surface.
-template <class Deficit>
-void refine(const ScanElements& se, const PencilCandidate& a, const PencilCandidate& b,
-            double tol, double min_angle, double floor_z, int depth, const Deficit& deficit,
-            std::vector<PencilCandidate>& out, std::uint64_t& added) {
-  // Chords shorter than twice the tolerance are within it of any crease between their ends:
-  // only a dip below the surface by more than half the tolerance still refines them, to
-  // depth 8 (1/256 of the chord; near a kink of the crease at a wall's top). Smaller dips
-  // (a crease curving sideways into a wall) are lifted by the check below.
-  if (a.family == 2 || depth >= 16) return;
-  const bool loose = (b.p - a.p).norm() >= 2 * tol &&
-                     chord_error(a.p, tangent_of(a), b.p, tangent_of(b)) > tol;
-  if (!loose && (depth >= 8 || deficit(0.5 * (a.p + b.p)) <= 0.5 * tol)) return;
-  PencilCandidate c;
-  if (!crease_between(se, a, b, min_angle, floor_z, c)) return;
-  ++added;
-  refine(se, a, c, tol, min_angle, floor_z, depth + 1, deficit, out, added);
-  out.push_back(c);
-  refine(se, c, b, tol, min_angle, floor_z, depth + 1, deficit, out, added);
-}
-
 double polyline_length(const std::vector<Vec3>& p) {
   double s = 0;
   for (std::size_t i = 1; i < p.size(); ++i) s += (p[i] - p[i - 1]).norm();
   return s;
 }
 
-struct ZLevelCandidates {
+struct Candidates {
   std::vector<PencilCandidate> cand;
-  std::vector<std::array<ElementRef, 2>> refs;  // the two touched elements
+  std::vector<ElementPair> refs;
 };
 
 // The sharp-concave junctions of the z-levels (none without a step-down) as candidates of
 // family 2, layer = level index below the part's top `top`.
-ZLevelCandidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter,
-                                   const PencilParams& p, double top, RunControl& control,
-                                   PencilStats& st) {
-  ZLevelCandidates z;
+Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
+                             double top, RunControl& control, PencilStats& st) {
+  Candidates z;
   if (!(p.step_down > 0)) return z;
   Stopwatch clock;
   ZLevelOpParams zp;
@@ -118,71 +91,60 @@ ZLevelCandidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutte
   return z;
 }
 
-}  // namespace
-
-// The stages for the ball as given (validated by run_pencil), tool tip = centre - radius z
-// (p.stock is not used: run_pencil below grows the ball by it).
-static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cutter,
-                                     const PencilParams& p, RunControl& control) {
-  PencilResult res;
-  PencilStats& st = res.stats;
-  const double min_angle = p.min_angle_deg * std::numbers::pi / 180;
-  const Aabb3 box = bounding_box(mesh);
-  const double floor_z = p.floor_z.value_or(box.lo.z());
-  // Candidates from z-levels first (appended after the drive planes' below): their elements
-  // are freed before the drive planes' are built, so the two never take memory at once.
-  ZLevelCandidates z = zlevel_candidates(mesh, cutter, p, box.hi.z(), control, st);
-  const ScanElements se = build_scan_elements(mesh, cutter.radius);
-  st.elements_s = se.build_s;
-
-  // 1. Candidates from both drive-plane families.
-  std::vector<PencilCandidate> cand;
-  std::vector<std::array<ElementRef, 2>> cand_refs;  // the two touched elements
-  std::array<double, 4> rect{};                       // the scanned rectangle
-  {
-    Stopwatch clock;
-    ScanParams sp;
-    sp.families = ScanFamilies::kBoth;
-    sp.interval = p.interval;
-    sp.tolerance = p.tolerance;
-    sp.margin = p.margin;
-    sp.floor_z = floor_z;
-    std::vector<ScanJunctionRecord> js;
-    const ScanStats ss = run_scan(
-        se, cutter, sp,
-        [&](const ScanChunk& ch) {
-          // The floor is not the part: its junctions are not creases.
-          for (const ScanJunctionRecord& j : ch.junctions)
-            if (j.kind == std::uint8_t(JunctionKind::kSharpConcave) && j.element1.kind != 3 &&
-                j.element2.kind != 3)
-              js.push_back(j);
-        },
-        control);
-    st.planes = ss.planes;
-    rect = ss.rect;
-    for (const ScanJunctionRecord& j : js) {
-      PencilCandidate c;
-      c.p = Vec3(j.position[0], j.position[1], j.position[2]);
-      c.b1 = Vec3(j.b1[0], j.b1[1], j.b1[2]);
-      c.b2 = Vec3(j.b2[0], j.b2[1], j.b2[2]);
-      const bool x_line = std::uint64_t(j.path) < ss.planes_x;
-      c.family = x_line ? 0 : 1;
-      c.layer = std::uint32_t(x_line ? j.path : j.path - std::int64_t(ss.planes_x));
-      cand.push_back(c);
-      cand_refs.push_back({j.element1, j.element2});
-    }
-    st.scan_s = clock.seconds();
+// The sharp-concave junctions of both drive-plane families (not the floor's: its junctions
+// are not creases) as candidates of family 0 (x planes) and 1 (y planes), layer = plane
+// index; `rect` is the scanned rectangle.
+Candidates drive_plane_candidates(const ScanElements& se, const Cutter& cutter,
+                                  const PencilParams& p, double floor_z, RunControl& control,
+                                  PencilStats& st, std::array<double, 4>& rect) {
+  Candidates out;
+  Stopwatch clock;
+  ScanParams sp;
+  sp.families = ScanFamilies::kBoth;
+  sp.interval = p.interval;
+  sp.tolerance = p.tolerance;
+  sp.margin = p.margin;
+  sp.floor_z = floor_z;
+  std::vector<ScanJunctionRecord> js;
+  const ScanStats ss = run_scan(
+      se, cutter, sp,
+      [&](const ScanChunk& ch) {
+        // The floor is not the part: its junctions are not creases.
+        for (const ScanJunctionRecord& j : ch.junctions)
+          if (j.kind == std::uint8_t(JunctionKind::kSharpConcave) && j.element1.kind != 3 &&
+              j.element2.kind != 3)
+            js.push_back(j);
+      },
+      control);
+  st.planes = ss.planes;
+  rect = ss.rect;
+  for (const ScanJunctionRecord& j : js) {
+    PencilCandidate c;
+    c.p = Vec3(j.position[0], j.position[1], j.position[2]);
+    c.b1 = Vec3(j.b1[0], j.b1[1], j.b1[2]);
+    c.b2 = Vec3(j.b2[0], j.b2[1], j.b2[2]);
+    const bool x_line = std::uint64_t(j.path) < ss.planes_x;
+    c.family = x_line ? 0 : 1;
+    c.layer = std::uint32_t(x_line ? j.path : j.path - std::int64_t(ss.planes_x));
+    out.cand.push_back(c);
+    out.refs.push_back({j.element1, j.element2});
   }
-  cand.insert(cand.end(), z.cand.begin(), z.cand.end());
-  cand_refs.insert(cand_refs.end(), z.refs.begin(), z.refs.end());
-  st.candidates = cand.size();
+  st.scan_s = clock.seconds();
+  return out;
+}
 
-  // 2. Pencil points (both contacts within the tolerance of the part) and the family that
-  // traces each.
-  Stopwatch index_clock0;
-  const MeshDistance distance(mesh);
-  st.index_s = index_clock0.seconds();
-  Stopwatch link_clock;
+// Per family (x planes, y planes, z-levels): the points it traces and their elements.
+struct Kept {
+  std::array<std::vector<PencilCandidate>, 3> pts;
+  std::array<std::vector<ElementPair>, 3> refs;
+};
+
+// Pencil points: the candidates whose bi-contact angle reaches min_angle and whose two
+// contacts lie within the tolerance of the part (res.points), and the family that traces each.
+Kept pencil_points(const Candidates& all, const MeshDistance& distance, const Cutter& cutter,
+                   const PencilParams& p, double min_angle, PencilResult& res) {
+  PencilStats& st = res.stats;
+  const std::vector<PencilCandidate>& cand = all.cand;
   std::vector<std::uint8_t> touches(cand.size(), 0);
   par::for_each(cand.size(), 256, [&](std::size_t i) {
     const PencilCandidate& c = cand[i];
@@ -194,8 +156,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     touches[i] = on_part(c.b1) && on_part(c.b2);
   });
   const bool scanned[3] = {true, true, p.step_down > 0};
-  std::array<std::vector<PencilCandidate>, 3> kept;
-  std::array<std::vector<std::array<ElementRef, 2>>, 3> kept_refs;
+  Kept kept;
   for (std::size_t i = 0; i < cand.size(); ++i) {
     const PencilCandidate& c = cand[i];
     const double angle = bicontact_angle(c.b1, c.b2);
@@ -207,29 +168,35 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     const bool keep = pencil_keep(c, scanned);
     res.points.push_back({c.p, c.b1, c.b2, angle, c.family, std::uint8_t(keep)});
     if (keep) {
-      kept[c.family].push_back(c);
-      kept_refs[c.family].push_back(cand_refs[i]);
+      kept.pts[c.family].push_back(c);
+      kept.refs[c.family].push_back(all.refs[i]);
     }
   }
   st.pencil_points = res.points.size();
+  return kept;
+}
 
-  // 3. Chains per family.
-  struct Chain {
-    std::vector<PencilCandidate> pts;
-    std::vector<std::array<ElementRef, 2>> refs;
-  };
+struct Chain {
+  std::vector<PencilCandidate> pts;
+  std::vector<ElementPair> refs;
+};
+
+// Chains per family; drive-plane chains reach to where their crease ends between layers.
+std::vector<Chain> trace_chains(const Kept& kept, const ScanElements& se, const PencilParams& p,
+                                const std::array<double, 4>& rect, double min_angle,
+                                double floor_z, PencilStats& st) {
   std::vector<Chain> chains;
   for (int f = 0; f < 3; ++f) {
-    st.kept_points += kept[f].size();
+    st.kept_points += kept.pts[f].size();
     PencilLinkParams lp;
     const double spacing = f == 2 ? p.step_down : p.interval;
     lp.max_gap = 1.5 * spacing + 0.1;
     lp.min_cos = kCreaseMinCos;
-    for (const auto& ids : link_layers(kept[f], lp)) {
+    for (const auto& ids : link_layers(kept.pts[f], lp)) {
       Chain c;
       for (std::uint32_t i : ids) {
-        c.pts.push_back(kept[f][i]);
-        c.refs.push_back(kept_refs[f][i]);
+        c.pts.push_back(kept.pts[f][i]);
+        c.refs.push_back(kept.refs[f][i]);
       }
       chains.push_back(std::move(c));
     }
@@ -251,102 +218,27 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
       ch.refs.insert(ch.refs.begin(), ch.refs.front());
     }
   });
-  st.link_s = link_clock.seconds();
-  if (control.cancel.load()) throw Cancelled{};
+  return chains;
+}
 
-  // The point drop-cutter (Embree, exact in double): checks refined points and chords.
-  Stopwatch index_clock;
-  const DropIndex index(mesh, cutter);
-  st.index_s += index_clock.seconds();
-  auto deficit_at = [&](const Vec3& q) { return surface_deficit(index, floor_z, q); };
-  const PartProbe part{index, distance, cutter.radius, floor_z, bounding_box(mesh).hi.z()};
-  auto closest = [&](const ElementRef& e) -> std::function<Vec3(const Vec3&)> {
-    const auto& V = mesh.vertices;
-    if (e.kind == 0) {
-      const auto& f = mesh.facets[std::size_t(e.a)];
-      return [&V, f](const Vec3& q) {
-        Vec3 c;
-        point_triangle_closest(q, V[f[0]], V[f[1]], V[f[2]], c);
-        return c;
-      };
-    }
-    if (e.kind == 1) {
-      const Vec3 a = V[std::size_t(e.a)], b = V[std::size_t(e.b)];
-      return [a, b](const Vec3& q) {
-        Vec3 c;
-        point_segment_closest(q, a, b, c);
-        return c;
-      };
-    }
-    const Vec3 v = V[std::size_t(e.a)];
-    return [v](const Vec3&) { return v; };
-  };
-  // Z-level chains: the crease point of A's two elements at the middle height, kept when it
-  // lies on the CL surface (the crease may have moved to other elements in between).
-  const double R = cutter.radius;
-  using Pair = std::array<ElementRef, 2>;
-  std::function<void(const PencilCandidate&, const Pair&, const PencilCandidate&, const Pair&,
-                     int, std::vector<PencilCandidate>&, std::uint64_t&)>
-      refine_z = [&](const PencilCandidate& a, const Pair& ea, const PencilCandidate& b,
-                     const Pair& eb, int depth, std::vector<PencilCandidate>& out,
-                     std::uint64_t& added) {
-        if (depth >= 16) return;
-        const bool loose = (b.p - a.p).norm() >= 2 * p.tolerance &&
-                           chord_error(a.p, tangent_of(a), b.p, tangent_of(b)) > p.tolerance;
-        if (!loose && (depth >= 8 || deficit_at(0.5 * (a.p + b.p)) <= 0.5 * p.tolerance)) return;
-        const double zm = 0.5 * (a.p.z() + b.p.z());
-        const Vec2 guess = 0.5 * (a.p.head<2>() + b.p.head<2>());
-        // The crease of a's elements, else of b's (a crease may pass from one pair to another
-        // between them, e.g. from two walls to their rim edges).
-        for (const Pair* e : {&ea, &eb}) {
-          const Pair& el = *e;
-          if (el[0].kind > 2 || el[1].kind > 2) continue;
-          Vec2 xy;
-          if (!crease_at_height(closest(el[0]), closest(el[1]), guess, zm + R, R,
-                                (b.p - a.p).norm(), xy))
-            continue;
-          const Vec3 q(xy.x(), xy.y(), zm);
-          // On the CL surface: the drop-cutter reaches it there (upper semicontinuous: at a
-          // wall's foot it reports the wall's top) and the point is not inside the part.
-          const double top = std::max(floor_z, index.query(q.x(), q.y()).tip_z);
-          if (top < zm - tol::kSweepSlack || !reachable(part, q)) continue;
-          const Vec3 centre = q + Vec3(0, 0, R);
-          PencilCandidate c = a;
-          c.p = q;
-          c.b1 = (centre - closest(el[0])(centre)).normalized();
-          c.b2 = (centre - closest(el[1])(centre)).normalized();
-          ++added;
-          refine_z(a, ea, c, el, depth + 1, out, added);
-          out.push_back(c);
-          refine_z(c, el, b, eb, depth + 1, out, added);
-          return;
-        }
-        // Under an overhang or along walls (z-level junctions of shadowed elements) the
-        // contacts are on walls below the elements: the crease follows a's tangent, straight
-        // (vertical between two walls). Kept when that point is on the CL surface.
-        for (const PencilCandidate* e : {&a, &b}) {
-          const Vec3 t = tangent_of(*e);
-          if (!(std::abs(t.z()) > 0.5)) continue;
-          const Vec3 q = e->p + t * ((zm - e->p.z()) / t.z());
-          const double top = std::max(floor_z, index.query(q.x(), q.y()).tip_z);
-          if ((q - e->p).norm() > (b.p - a.p).norm() || top < zm - tol::kSweepSlack ||
-              !reachable(part, q))
-            continue;
-          PencilCandidate c = *e;
-          c.p = q;
-          ++added;
-          refine_z(a, ea, c, e == &a ? ea : eb, depth + 1, out, added);
-          out.push_back(c);
-          refine_z(c, e == &a ? ea : eb, b, eb, depth + 1, out, added);
-          return;
-        }
-      };
+struct Pieces {
+  std::vector<std::vector<Vec3>> paths;
+  std::vector<std::vector<std::array<Vec3, 2>>> normals;
+};
 
-  // Join chain ends (the same crease traced by different families meets end to end), on
-  // the candidates themselves so that the joins are refined like the rest.
+// Chain ends joined (the same crease traced by different families meets end to end), on the
+// candidates themselves so that the joins are refined like the rest; then refined: exact
+// crease points where a chord's error bound exceeds the tolerance or the chord dips below
+// the CL surface. Drive-plane pairs by the exact envelope of an intermediate plane; pairs
+// involving a z-level point by the crease of the lower point's two elements at the middle
+// height. Pieces shorter than min_length are dropped.
+Pieces join_and_refine(const std::vector<Chain>& chains, const ScanElements& se,
+                       const ZLevelCreaseRefine& refine_z, const PencilParams& p, double min_angle,
+                       PencilStats& st) {
+  const double floor_z = refine_z.floor_z;
   struct Node {
     PencilCandidate c;
-    std::array<ElementRef, 2> refs;
+    ElementPair refs;
   };
   std::vector<Node> nodes;
   std::vector<std::vector<Vec3>> polys;
@@ -365,10 +257,6 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const double merge = p.merge_distance > 0 ? p.merge_distance : 2 * p.interval;
   const std::vector<std::vector<Vec3>> joined = merge_paths(std::move(polys), merge, 0.5, 0);
 
-  // Refinement: exact crease points where a chord's error bound exceeds the tolerance or the
-  // chord dips below the CL surface. Drive-plane pairs by the exact envelope of an
-  // intermediate plane; pairs involving a z-level point by the crease of the lower point's
-  // two elements at the middle height.
   Stopwatch refine_clock;
   std::vector<std::vector<Vec3>> pieces(joined.size());
   std::vector<std::vector<std::array<Vec3, 2>>> normals(joined.size());
@@ -390,7 +278,8 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
           PencilCandidate a = prev->c;
           PencilCandidate b = n.c;
           if (a.family != b.family) b.family = a.family;  // refine on a's planes
-          refine(se, a, b, p.tolerance, min_angle, floor_z, 0, deficit_at, full, added[k]);
+          refine_on_planes(se, refine_z.index, a, b, p.tolerance, min_angle, floor_z, 0, full,
+                           added[k]);
         }
       }
       full.push_back(n.c);
@@ -418,10 +307,17 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     normals.resize(w);
   }
 
-  // 4. Never below the CL surface: the ball swept along every chord (exact), a chord that
-  // touches lifted. A chord that would need more than `leave` has left the crease (a link
-  // between two creases the refinement could not bridge): the piece is split there instead
-  // of lifted, so that pencil paths stay on creases.
+  return {std::move(pieces), std::move(normals)};
+}
+
+// Never below the CL surface: the ball swept along every chord (exact), a chord that touches
+// lifted. A chord that would need more than `leave` has left the crease (a link between two
+// creases the refinement could not bridge): the piece is split there instead of lifted, so
+// that pencil paths stay on creases.
+void check_pieces(Pieces& pc, const MeshDistance& distance, const DropIndex& index,
+                  const PencilParams& p, double R, double floor_z, PencilStats& st) {
+  std::vector<std::vector<Vec3>>& pieces = pc.paths;
+  std::vector<std::vector<std::array<Vec3, 2>>>& normals = pc.normals;
   Stopwatch check_clock;
   const double spacing = std::max(0.02, 0.1 * p.interval);
   const double leave = std::max(10 * p.tolerance, 0.05);
@@ -460,8 +356,14 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   }
   st.check_s = check_clock.seconds();
 
-  // 5. Order and orient. With a cut direction, pieces with a material side are turned to
-  // cut that way first and keep it; the ordering orients the others.
+}
+
+// Order and orient. With a cut direction, pieces with a material side are turned to cut that
+// way first and keep it; the ordering orients the others.
+void order_pieces(Pieces& pc, const PencilParams& p, PencilResult& res) {
+  PencilStats& st = res.stats;
+  std::vector<std::vector<Vec3>>& pieces = pc.paths;
+  std::vector<std::vector<std::array<Vec3, 2>>>& normals = pc.normals;
   std::vector<std::uint8_t> fixed;
   if (p.direction != CutDirection::kAny) {
     fixed.assign(pieces.size(), 0);
@@ -491,6 +393,48 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
     res.path_normals.push_back(std::move(b));
   }
   st.paths = res.paths.size();
+}
+
+}  // namespace
+
+// The stages for the ball as given (validated by run_pencil), tool tip = centre - radius z
+// (p.stock is not used: run_pencil below grows the ball by it).
+static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cutter,
+                                     const PencilParams& p, RunControl& control) {
+  PencilResult res;
+  PencilStats& st = res.stats;
+  const double min_angle = p.min_angle_deg * std::numbers::pi / 180;
+  const Aabb3 box = bounding_box(mesh);
+  const double floor_z = p.floor_z.value_or(box.lo.z());
+  // Candidates from z-levels first (appended after the drive planes' below): their elements
+  // are freed before the drive planes' are built, so the two never take memory at once.
+  const Candidates z = zlevel_candidates(mesh, cutter, p, box.hi.z(), control, st);
+  const ScanElements se = build_scan_elements(mesh, cutter.radius);
+  st.elements_s = se.build_s;
+  std::array<double, 4> rect{};  // the scanned rectangle
+  Candidates cand = drive_plane_candidates(se, cutter, p, floor_z, control, st, rect);
+  cand.cand.insert(cand.cand.end(), z.cand.begin(), z.cand.end());
+  cand.refs.insert(cand.refs.end(), z.refs.begin(), z.refs.end());
+  st.candidates = cand.cand.size();
+
+  Stopwatch index_clock0;
+  const MeshDistance distance(mesh);
+  st.index_s = index_clock0.seconds();
+  Stopwatch link_clock;
+  const Kept kept = pencil_points(cand, distance, cutter, p, min_angle, res);
+  const std::vector<Chain> chains = trace_chains(kept, se, p, rect, min_angle, floor_z, st);
+  st.link_s = link_clock.seconds();
+  if (control.cancel.load()) throw Cancelled{};
+
+  // The point drop-cutter (Embree, exact in double): checks refined points and chords.
+  Stopwatch index_clock;
+  const DropIndex index(mesh, cutter);
+  st.index_s += index_clock.seconds();
+  const PartProbe part{index, distance, cutter.radius, floor_z, box.hi.z()};
+  const ZLevelCreaseRefine refine_z{mesh, index, part, p.tolerance, cutter.radius, floor_z};
+  Pieces pieces = join_and_refine(chains, se, refine_z, p, min_angle, st);
+  check_pieces(pieces, distance, index, p, cutter.radius, floor_z, st);
+  order_pieces(pieces, p, res);
   return res;
 }
 
