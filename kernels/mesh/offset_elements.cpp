@@ -124,28 +124,32 @@ bool cone_y_extent(std::span<const Vec3> ws, double slack, double& dy_min, doubl
   }
   dy_min = INFINITY;
   dy_max = -INFINITY;
-  auto consider = [&](const Vec3& d) {
+  // The directions d and -d at once: -d normalised and its dot products are d's negated,
+  // exactly, so one pass decides both.
+  auto consider_both = [&](const Vec3& d) {
     const double len = d.norm();
     if (!(len > tol::kConeDirectionMin)) return;
     const Vec3 u = d / len;
-    for (std::size_t i = 0; i < n; ++i)
-      if (u.dot(wn[i]) > kIn) return;
-    dy_min = std::min(dy_min, u.y());
-    dy_max = std::max(dy_max, u.y());
+    bool plus = true, minus = true;
+    for (std::size_t i = 0; i < n && (plus || minus); ++i) {
+      const double s = u.dot(wn[i]);
+      plus = plus && !(s > kIn);
+      minus = minus && !(-s > kIn);
+    }
+    if (plus) {
+      dy_min = std::min(dy_min, u.y());
+      dy_max = std::max(dy_max, u.y());
+    }
+    if (minus) {
+      dy_min = std::min(dy_min, -u.y());
+      dy_max = std::max(dy_max, -u.y());
+    }
   };
   const Vec3 ey(0, 1, 0);
-  consider(ey);
-  consider(-ey);
-  for (std::size_t i = 0; i < n; ++i) {
-    consider(ey - wn[i] * wn[i].y());
-    consider(-ey + wn[i] * wn[i].y());
-  }
+  consider_both(ey);
+  for (std::size_t i = 0; i < n; ++i) consider_both(ey - wn[i] * wn[i].y());
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) {
-      const Vec3 c = ws[i].cross(ws[j]);
-      consider(c);
-      consider(-c);
-    }
+    for (std::size_t j = i + 1; j < n; ++j) consider_both(ws[i].cross(ws[j]));
   return dy_min <= dy_max;
 }
 
