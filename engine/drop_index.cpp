@@ -2,6 +2,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -9,6 +10,26 @@
 #include "engine/parallel.hpp"
 
 namespace ncpath {
+
+namespace {
+
+// Recently prepared facets of on-demand indexes, per thread: direct-mapped by primitive.
+struct FacetCache {
+  static constexpr std::size_t kSlots = 4096;
+  struct Slot {
+    std::uint64_t owner = 0;  // the index's id; 0: empty
+    std::uint32_t prim = 0;
+    PreparedFacet facet;
+  };
+  std::vector<Slot> slots = std::vector<Slot>(kSlots);
+};
+
+std::uint64_t next_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+
+}  // namespace
 
 struct DropIndex::Impl {
   // The per-query state Embree hands back to the intersection callback.
@@ -26,11 +47,21 @@ struct DropIndex::Impl {
   double z_top = 1;
   EmbreeUserScene embree;
 
-  // Primitive i prepared, from the table or into `scratch`.
-  const PreparedFacet& facet(std::uint32_t i, PreparedFacet& scratch) const {
+  std::uint64_t id = next_id();  // tells this index's entries in a thread's cache apart
+
+  // Primitive i prepared: from the table, else from the calling thread's cache of recently
+  // prepared facets (consecutive queries meet mostly the same facets; valid until this
+  // thread's next call).
+  const PreparedFacet& facet(std::uint32_t i) const {
     if (!prepared.empty()) return prepared[i];
-    prepare(kept[i], scratch);
-    return scratch;
+    thread_local FacetCache cache;
+    FacetCache::Slot& slot = cache.slots[i % FacetCache::kSlots];
+    if (slot.owner != id || slot.prim != i) {
+      prepare(kept[i], slot.facet);
+      slot.owner = id;
+      slot.prim = i;
+    }
+    return slot.facet;
   }
   bool prepare(std::size_t source, PreparedFacet& f) const {
     const auto& v = mesh->facets[source];
@@ -39,8 +70,7 @@ struct DropIndex::Impl {
 
   static void bounds(const RTCBoundsFunctionArguments* args) {
     const auto* self = static_cast<const Impl*>(args->geometryUserPtr);
-    PreparedFacet scratch;
-    const PreparedFacet& f = self->facet(args->primID, scratch);
+    const PreparedFacet& f = self->facet(args->primID);
     const double R = self->cutter.radius;
     RTCBounds* b = args->bounds_o;
     b->lower_x = pad_down(f.min_x - R);
@@ -56,8 +86,7 @@ struct DropIndex::Impl {
     auto* q = reinterpret_cast<QueryContext*>(args->context);
     auto* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
     const Impl& m = *q->index;
-    PreparedFacet scratch;
-    const PreparedFacet& f = m.facet(args->primID, scratch);
+    const PreparedFacet& f = m.facet(args->primID);
     if (drop_facet(m.cutter, f, q->x, q->y, m.kept[args->primID], q->best)) {
       // Shorten the ray to the new best tip, rounded so that boxes reaching exactly that
       // height are still visited (ties are decided in double, not by Embree).

@@ -9,9 +9,10 @@
 // facets; Embree's float boxes are padded so rounding can only add candidates.
 //
 // Facets are prepared (prepare_facet) either once and kept in the index (288 bytes a facet),
-// or when a box meets the query (the index keeps 4 bytes a facet beside Embree's BVH;
-// queries cost about 1.8 times as much). Preparing is deterministic: both give the same
-// bits. kAuto keeps them while the table takes at most kPreparedTableBytes: small meshes
+// or when a box meets the query (the index keeps 4 bytes a facet beside Embree's BVH, and
+// each thread a cache of the 4096 slots' recently prepared facets, 1.2 MB: queries along a
+// path meet mostly the same facets; a query far from the last costs about 1.8 times as
+// much). Preparing is deterministic: both give the same bits. kAuto keeps them while the table takes at most kPreparedTableBytes: small meshes
 // keep their speed, and on a dense scan the pencil and fillet, whose largest structure the
 // table was, fit 20 M facets in 24 GB (docs/performance.md "Memory per facet").
 //

@@ -60,6 +60,24 @@ TEST(DropIndex, EqualsBruteForceOnRandomSoup) {
   expect_index_matches_brute_force(test::random_soup(3000, 60, 20, 4, 3), 10000, 4);
 }
 
+// Two indexes preparing facets on demand, queried in turn on one thread (their facets share
+// the thread's cache, by primitive number): each still answers for its own mesh.
+TEST(DropIndex, InterleavedOnDemandIndexesKeepTheirOwnFacets) {
+  const TriangleMesh m1 = test::random_height_field(40, 60, 8, 11);
+  const TriangleMesh m2 = test::random_height_field(40, 60, 8, 12);
+  const FacetTable t1 = build_facet_table(m1), t2 = build_facet_table(m2);
+  const Cutter ball = ball_cutter(5);
+  const DropIndex i1(m1, ball, DropIndex::Facets::kOnDemand);
+  const DropIndex i2(m2, ball, DropIndex::Facets::kOnDemand);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> X(0, 60);
+  for (int k = 0; k < 2000; ++k) {
+    const double x = X(rng), y = X(rng);
+    ASSERT_EQ(i1.query(x, y).tip_z, drop_brute_force(t1, ball, x, y).tip_z) << x << "," << y;
+    ASSERT_EQ(i2.query(x, y).tip_z, drop_brute_force(t2, ball, x, y).tip_z) << x << "," << y;
+  }
+}
+
 // Degenerate facets among the others: left out, and the contacts still name mesh facets.
 TEST(DropIndex, EqualsBruteForceWithDegenerateFacets) {
   TriangleMesh mesh = test::random_soup(2000, 60, 20, 4, 5);
