@@ -226,46 +226,60 @@ struct Pieces {
   std::vector<std::vector<std::array<Vec3, 2>>> normals;
 };
 
-// Chain ends joined (the same crease traced by different families meets end to end), on the
-// candidates themselves so that the joins are refined like the rest; then refined: exact
-// crease points where a chord's error bound exceeds the tolerance or the chord dips below
-// the CL surface. Drive-plane pairs by the exact envelope of an intermediate plane; pairs
-// involving a z-level point by the crease of the lower point's two elements at the middle
-// height. Pieces shorter than min_length are dropped.
-Pieces join_and_refine(const std::vector<Chain>& chains, const ScanElements& se,
-                       const ZLevelCreaseRefine& refine_z, const PencilParams& p, double min_angle,
-                       PencilStats& st) {
-  const double floor_z = refine_z.floor_z;
+// The chains' points with their elements, and the chains joined into polylines of their
+// positions (a point's position finds it again: node_at).
+struct Joined {
   struct Node {
     PencilCandidate c;
     ElementPair refs;
   };
   std::vector<Node> nodes;
+  std::map<std::array<double, 3>, std::uint32_t> node_at;
+  std::vector<std::vector<Vec3>> polylines;
+};
+
+// Chain ends joined (the same crease traced by different families meets end to end), on the
+// candidates themselves so that the joins are refined like the rest.
+Joined join_chains(const std::vector<Chain>& chains, const PencilParams& p) {
+  Joined j;
   std::vector<std::vector<Vec3>> polys;
   for (const Chain& ch : chains) {
     std::vector<Vec3> poly;
     for (std::size_t i = 0; i < ch.pts.size(); ++i) {
-      // The node's index rides in the polyline as its position; recovered below.
       poly.push_back(ch.pts[i].p);
-      nodes.push_back({ch.pts[i], ch.refs[i]});
+      j.nodes.push_back({ch.pts[i], ch.refs[i]});
     }
     polys.push_back(std::move(poly));
   }
-  std::map<std::array<double, 3>, std::uint32_t> node_at;
-  for (std::uint32_t i = 0; i < nodes.size(); ++i)
-    node_at.emplace(std::array<double, 3>{nodes[i].c.p.x(), nodes[i].c.p.y(), nodes[i].c.p.z()}, i);
+  for (std::uint32_t i = 0; i < j.nodes.size(); ++i) {
+    const Vec3& q = j.nodes[i].c.p;
+    j.node_at.emplace(std::array<double, 3>{q.x(), q.y(), q.z()}, i);
+  }
   const double merge = p.merge_distance > 0 ? p.merge_distance : 2 * p.interval;
-  const std::vector<std::vector<Vec3>> joined = merge_paths(std::move(polys), merge, 0.5, 0);
+  j.polylines = merge_paths(std::move(polys), merge, 0.5, 0);
+  return j;
+}
 
+// The joined chains refined: exact crease points where a chord's error bound exceeds the
+// tolerance or the chord dips below the CL surface. Drive-plane pairs by the exact envelope
+// of an intermediate plane; pairs involving a z-level point by the crease of the lower
+// point's two elements at the middle height. Pieces shorter than min_length are dropped.
+Pieces refine_joined(const Joined& joined, const ScanElements& se,
+                     const ZLevelCreaseRefine& refine_z, const PencilParams& p, double min_angle,
+                     PencilStats& st) {
+  using Node = Joined::Node;
+  const std::vector<Node>& nodes = joined.nodes;
+  const double floor_z = refine_z.floor_z;
   Stopwatch refine_clock;
-  std::vector<std::vector<Vec3>> pieces(joined.size());
-  std::vector<std::vector<std::array<Vec3, 2>>> normals(joined.size());
-  std::vector<std::uint64_t> added(joined.size(), 0);
-  par::for_each(joined.size(), 1, [&](std::size_t k) {
+  const std::size_t count = joined.polylines.size();
+  std::vector<std::vector<Vec3>> pieces(count);
+  std::vector<std::vector<std::array<Vec3, 2>>> normals(count);
+  std::vector<std::uint64_t> added(count, 0);
+  par::for_each(count, 1, [&](std::size_t k) {
     std::vector<PencilCandidate> full;
     const Node* prev = nullptr;
-    for (const Vec3& q : joined[k]) {
-      const Node& n = nodes[node_at.at({q.x(), q.y(), q.z()})];
+    for (const Vec3& q : joined.polylines[k]) {
+      const Node& n = nodes[joined.node_at.at({q.x(), q.y(), q.z()})];
       if (prev) {
         const Node& lo = prev->c.p.z() <= n.c.p.z() ? *prev : n;
         if (prev->c.family == 2 || n.c.family == 2) {
@@ -295,8 +309,8 @@ Pieces join_and_refine(const std::vector<Chain>& chains, const ScanElements& se,
   {
     std::size_t w = 0;
     for (std::size_t k = 0; k < pieces.size(); ++k) {
-      if (pieces[k].size() < 2 || polyline_length(pieces[k]) < std::max(p.min_length, 1e-9))
-        continue;
+      const double shortest = std::max(p.min_length, tol::kPencilMinPiece);
+      if (pieces[k].size() < 2 || polyline_length(pieces[k]) < shortest) continue;
       if (w != k) {
         pieces[w] = std::move(pieces[k]);
         normals[w] = std::move(normals[k]);
@@ -335,7 +349,7 @@ void check_pieces(Pieces& pc, const MeshDistance& distance, const DropIndex& ind
       // Piece [from, i]; a chord still touching is never cut.
       if (i > from) {
         std::vector<Vec3> part(cur.begin() + from, cur.begin() + i + 1);
-        if (polyline_length(part) >= std::max(p.min_length, 1e-9)) {
+        if (polyline_length(part) >= std::max(p.min_length, tol::kPencilMinPiece)) {
           split[k].push_back(std::move(part));
           split_b[k].emplace_back(cur_b.begin() + from, cur_b.begin() + i + 1);
         }
@@ -432,7 +446,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   st.index_s += index_clock.seconds();
   const PartProbe part{index, distance, cutter.radius, floor_z, box.hi.z()};
   const ZLevelCreaseRefine refine_z{mesh, index, part, p.tolerance, cutter.radius, floor_z};
-  Pieces pieces = join_and_refine(chains, se, refine_z, p, min_angle, st);
+  Pieces pieces = refine_joined(join_chains(chains, p), se, refine_z, p, min_angle, st);
   check_pieces(pieces, distance, index, p, cutter.radius, floor_z, st);
   order_pieces(pieces, p, res);
   return res;

@@ -357,6 +357,10 @@ inline constexpr double kPencilFamilyTie = 1e-9;
 // engine/pencil_crease.cpp).
 inline constexpr double kPencilAlongPlane = 1e-6;
 
+// mm. A pencil piece shorter than this is a point, not a path: dropped even when min_length
+// is 0 (engine/pencil.cpp).
+inline constexpr double kPencilMinPiece = 1e-9;
+
 // Dimensionless (mean lateral component of a crease's material vector along a path). A path
 // whose cut-side score is within this times its xy length of 0 has no material side: a
 // symmetric V-groove (b1 + b2 vertical to rounding, ~1e-16) or a vertical corner (no xy
