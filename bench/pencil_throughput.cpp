@@ -5,6 +5,10 @@
 //
 //   ncpath_pencil_throughput [--mesh PATH ...] [--interval 0.5,0.1] [--step-down 1]
 //                            [--threads 2] [--min-angle 20] [--tolerance 0.01]
+//                            [--zone-share 0.25]
+//
+// --zone-share 0,1 runs each case with the z-levels slicing the whole part and the concave
+// zone (PencilParams::zone_max_share): a baseline measured in the same run.
 //
 // Without --mesh: anchor_dense, fandisk, lion-head, refined_elephant (datasets/cache/meshes)
 // and anchor_large.stl (486,272 facets, the >= 454k model) and elephant_large.stl when present
@@ -29,7 +33,11 @@ int main(int argc, char** argv) {
   std::vector<double> intervals = {0.5, 0.1};
   double step_down = 1.0, min_angle = 20, tolerance = 0.01, fit_xy = 200;
   int threads = 2;
+  std::vector<double> zone_shares = {PencilParams{}.zone_max_share};
   app.add_option("--mesh", meshes, "Meshes (default: the Table 1 set)");
+  app.add_option("--zone-share", zone_shares,
+                 "Largest share of facets for which the z-levels slice the concave zone")
+      ->delimiter(',');
   app.add_option("--interval", intervals)->delimiter(',');
   app.add_option("--step-down", step_down, "Z-level step for near-vertical creases (0 = none)");
   app.add_option("--min-angle", min_angle, "Bi-contact angle threshold, degrees");
@@ -56,27 +64,32 @@ int main(int argc, char** argv) {
     tr.fit_xy_mm = fit_xy;
     apply_transform(tr, in.mesh);
     for (double interval : intervals) {
-      PencilParams p;
-      p.interval = interval;
-      p.step_down = step_down;
-      p.min_angle_deg = min_angle;
-      p.tolerance = tolerance;
-      RunControl control;
-      Stopwatch clock;
-      const PencilResult r = run_pencil(in.mesh, ball_cutter(5), p, control);
-      const double total = clock.seconds();
-      const PencilStats& s = r.stats;
-      std::printf(
-          "%-22s %9zu %8g %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8llu %7llu %6llu %9.1f "
-          "%8.1f\n",
-          std::filesystem::path(path).filename().c_str(), in.mesh.facets.size(), interval, total,
-          s.elements_s, s.scan_s, s.zlevel_s, s.link_s, s.index_s, s.refine_s, s.check_s,
-          (unsigned long long)s.pencil_points, (unsigned long long)s.kept_points,
-          (unsigned long long)s.paths, s.traced_length, peak_rss_bytes() / 1048576.0);
-      std::printf("%-22s refined %llu, lifted %llu, candidates %llu, chains %llu\n", "",
-                  (unsigned long long)s.refined_points, (unsigned long long)s.lifted_points,
-                  (unsigned long long)s.candidates, (unsigned long long)s.chains);
-      std::fflush(stdout);
+      for (double share : zone_shares) {
+        PencilParams p;
+        p.zone_max_share = share;
+        p.interval = interval;
+        p.step_down = step_down;
+        p.min_angle_deg = min_angle;
+        p.tolerance = tolerance;
+        RunControl control;
+        Stopwatch clock;
+        const PencilResult r = run_pencil(in.mesh, ball_cutter(5), p, control);
+        const double total = clock.seconds();
+        const PencilStats& s = r.stats;
+        std::printf(
+            "%-22s %9zu %8g %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f %8llu %7llu %6llu %9.1f "
+            "%8.1f\n",
+            std::filesystem::path(path).filename().c_str(), in.mesh.facets.size(), interval, total,
+            s.elements_s, s.scan_s, s.zlevel_s, s.link_s, s.index_s, s.refine_s, s.check_s,
+            (unsigned long long)s.pencil_points, (unsigned long long)s.kept_points,
+            (unsigned long long)s.paths, s.traced_length, peak_rss_bytes() / 1048576.0);
+        std::printf("%-22s refined %llu, lifted %llu, candidates %llu, chains %llu; zone share %g: "
+                    "z-levels sliced %llu facets, zone %.2f s\n", "",
+                    (unsigned long long)s.refined_points, (unsigned long long)s.lifted_points,
+                    (unsigned long long)s.candidates, (unsigned long long)s.chains, share,
+                    (unsigned long long)s.zlevel_facets, s.zone_s);
+        std::fflush(stdout);
+      }
     }
   }
   return 0;

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
+#include "engine/concave_zone.hpp"
 #include "engine/drop_index.hpp"
 #include "engine/mesh_distance.hpp"
 #include "engine/parallel.hpp"
@@ -58,17 +61,45 @@ struct Candidates {
   std::vector<ElementPair> refs;
 };
 
+// Candidates sorted by layer, position, contact vectors and elements.
+void canonical_order(Candidates& c) {
+  std::vector<std::uint32_t> order(c.cand.size());
+  std::iota(order.begin(), order.end(), 0u);
+  auto key = [&](std::uint32_t i) {
+    const PencilCandidate& a = c.cand[i];
+    const ElementPair& r = c.refs[i];
+    return std::make_tuple(a.layer, a.p.x(), a.p.y(), a.p.z(), a.b1.x(), a.b1.y(), a.b1.z(),
+                           a.b2.x(), a.b2.y(), a.b2.z(), r[0].kind, r[0].a, r[0].b, r[1].kind,
+                           r[1].a, r[1].b);
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t x, std::uint32_t y) { return key(x) < key(y); });
+  Candidates sorted;
+  for (std::uint32_t i : order) {
+    sorted.cand.push_back(c.cand[i]);
+    sorted.refs.push_back(c.refs[i]);
+  }
+  c = std::move(sorted);
+}
+
 // The sharp-concave junctions of the z-levels (none without a step-down) as candidates of
-// family 2, layer = level index below the part's top `top`.
+// family 2, layer = level index below the part's top `top`, in a canonical order (level,
+// position, elements): the same whether or not the z-levels sliced the concave zone only.
 Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
                              double top, RunControl& control, PencilStats& st) {
   Candidates z;
   if (!(p.step_down > 0)) return z;
   Stopwatch clock;
+  const ConcaveZone zone =
+      concave_zone(mesh, cutter.radius, p.min_angle_deg * std::numbers::pi / 180, p.tolerance);
+  st.zone_s = zone.build_s;
+  const bool sliced = double(zone.keep_facets) <= p.zone_max_share * double(mesh.facets.size());
+  st.zlevel_facets = sliced ? zone.keep_facets : mesh.facets.size();
   ZLevelOpParams zp;
   zp.step_down = p.step_down;
   zp.tolerance = p.tolerance;
   zp.condition = false;  // run_pencil conditioned the mesh
+  if (sliced) zp.zone = &zone;
   const ZLevelOpStats zs = run_zlevel(
       mesh, cutter, zp,
       [&](const ZLevelChunk& ch) {
@@ -85,6 +116,7 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
         }
       },
       control);
+  canonical_order(z);
   st.levels = zs.levels;
   st.zlevel_open_chains = zs.open_chains;
   st.zlevel_s = clock.seconds();

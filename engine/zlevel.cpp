@@ -56,6 +56,21 @@ void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
   }
 }
 
+// The zone's kept facets as a mesh of their own (the same vertices) and, per facet, its index
+// in `mesh`: their offset elements are the kept facets' whole neighbourhoods, the edges and
+// vertices at the zone's border untrimmed by facets left out.
+TriangleMesh zone_submesh(const TriangleMesh& mesh, const ConcaveZone& zone,
+                          std::vector<std::uint32_t>& source) {
+  TriangleMesh sub;
+  sub.vertices = mesh.vertices;
+  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
+    if (zone.keep[f]) {
+      sub.facets.push_back(mesh.facets[f]);
+      source.push_back(f);
+    }
+  return sub;
+}
+
 struct LevelOut {
   ZLevelChunk chunk;
   std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
@@ -82,7 +97,15 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   const TriangleMesh& part = p.condition ? cond.mesh : mesh;
   // Sliced for the ball grown by the largest move (same centres: kernel tip = z - grow).
   const double grow = st.condition.max_move, R = cutter.radius + grow;
-  const OffsetElements el = build_offset_elements_parallel(part, R, false, Coplanar::kVertical);
+  std::vector<std::uint32_t> zone_source;  // the mesh facet behind each sliced facet
+  const TriangleMesh zone_part = p.zone ? zone_submesh(part, *p.zone, zone_source) : TriangleMesh{};
+  const OffsetElements el =
+      build_offset_elements_parallel(p.zone ? zone_part : part, R, false, Coplanar::kVertical);
+  auto ref = [&](std::uint32_t id) {
+    ElementRef r = element_ref(el, id);
+    if (r.kind == 0 && p.zone) r.a = zone_source[std::size_t(r.a)];
+    return r;
+  };
   if (el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
   st.facets = el.facet_count();
   st.edges = el.edge_count();
@@ -167,7 +190,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
         rec.path = path;
         rec.kind = std::uint8_t(s.kind);
         rec.shadow = s.shadow;
-        rec.element = element_ref(el, s.element);
+        rec.element = ref(s.element);
         rec.start = {s.a.x(), s.a.y(), z};
         rec.end = {s.b.x(), s.b.y(), z};
         if (s.kind != ContourSegKind::kLine)
@@ -193,14 +216,16 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       ch.contour_hole.push_back(con.hole);
       out.holes += con.hole;
       for (const ZJunction& j : con.junctions) {
+        if (p.zone && !p.zone->holds(Vec3(j.position.x(), j.position.y(), zk + el.radius)))
+          continue;
         ZLevelJunctionRecord rec;
         rec.path = path;
         rec.kind = std::uint8_t(j.kind);
         rec.position = {j.position.x(), j.position.y(), z};
         rec.b1 = {j.b1.x(), j.b1.y(), j.b1.z()};
         rec.b2 = {j.b2.x(), j.b2.y(), j.b2.z()};
-        rec.element1 = element_ref(el, j.e1);
-        rec.element2 = element_ref(el, j.e2);
+        rec.element1 = ref(j.e1);
+        rec.element2 = ref(j.e2);
         rec.angle = std::acos(std::clamp(j.b1.dot(j.b2), -1.0, 1.0));
         ch.junctions.push_back(rec);
         ++out.kinds[std::size_t(j.kind)];

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "engine/cl_chunk.hpp"
+#include "engine/concave_zone.hpp"
 #include "engine/run_control.hpp"
 #include "engine/scan.hpp"  // ScanElementRef
 #include "kernels/cutters/cutter.hpp"
@@ -49,6 +50,10 @@ struct ZLevelOpParams {
   // for the ball grown by the largest vertex move, at the same centre heights: the contours
   // keep the tool clear of the part as given. false: the mesh is conditioned already (pencil).
   bool condition = true;
+  // Optional (pencil, fillet): slice only the zone's kept facets (and the edges between their
+  // vertices) and report only the junctions whose ball centre the zone holds: those are the
+  // whole mesh's there (engine/concave_zone.hpp). The contours are then partial.
+  const ConcaveZone* zone = nullptr;
 };
 
 // Empty when usable; else a message naming the bad key.

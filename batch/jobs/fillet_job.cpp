@@ -33,6 +33,7 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
   const out::StatValue reference[] = {
       {"reference_planes", i64(p.planes), ""},
       {"reference_levels", i64(p.levels), ""},
+      {"reference_zlevel_facets", i64(p.zlevel_facets), ""},
       {"reference_candidates", i64(p.candidates), ""},
       {"reference_pencil_points", i64(p.pencil_points), ""},
       {"reference_kept_points", i64(p.kept_points), ""},
@@ -45,6 +46,7 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
       {"reference_elements_s", p.elements_s, "s"},
       {"reference_scan_s", p.scan_s, "s"},
       {"reference_zlevel_s", p.zlevel_s, "s"},
+      {"reference_zone_s", p.zone_s, "s"},
       {"reference_link_s", p.link_s, "s"},
       {"reference_refine_s", p.refine_s, "s"},
       {"reference_check_s", p.check_s, "s"},

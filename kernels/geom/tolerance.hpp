@@ -361,6 +361,15 @@ inline constexpr double kPencilAlongPlane = 1e-6;
 // is 0 (engine/pencil.cpp).
 inline constexpr double kPencilMinPiece = 1e-9;
 
+// Dimensionless (cosine). The concave zone's normal cone of a patch (engine/concave_zone.hpp)
+// whose normals reach within this of 90 degrees from its axis is unbounded: near a
+// hemisphere the cone's axis says nothing.
+inline constexpr double kConcaveZoneMinCos = 1e-3;
+
+// rad. The concave zone's cones and angle tests are widened by this for rounding in the
+// normals (~1e-15): the screen must never drop a pair at its threshold.
+inline constexpr double kConcaveZoneAngle = 1e-9;
+
 // Dimensionless (mean lateral component of a crease's material vector along a path). A path
 // whose cut-side score is within this times its xy length of 0 has no material side: a
 // symmetric V-groove (b1 + b2 vertical to rounding, ~1e-16) or a vertical corner (no xy
