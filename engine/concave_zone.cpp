@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <span>
 
 #include <Eigen/Geometry>
@@ -20,17 +22,17 @@ constexpr double kKeepCellPerRadius = 0.25;  // the kept region's cell edge, in 
 constexpr double kLookupCellPerRadius = 1;     // holds()'s cell edge, in R
 constexpr std::int64_t kMaxCells = std::int64_t(1) << 25;
 
-// A uniform grid over a box; cells grow until there are at most kMaxCells.
+// A uniform grid over a box; cells grow until there are at most max_cells.
 struct Grid {
   Vec3 lo;
   double h = 1;
   std::array<std::int64_t, 3> n{1, 1, 1};
 
   Grid(const Vec3& lo_, double h_, std::array<std::int64_t, 3> n_) : lo(lo_), h(h_), n(n_) {}
-  Grid(const Aabb3& box, double cell) : lo(box.lo), h(cell) {
+  Grid(const Aabb3& box, double cell, std::int64_t max_cells = kMaxCells) : lo(box.lo), h(cell) {
     for (;; h *= 1.5) {
       for (int a = 0; a < 3; ++a) n[a] = std::int64_t((box.hi[a] - box.lo[a]) / h) + 1;
-      if (n[0] * n[1] * n[2] <= kMaxCells) break;
+      if (n[0] * n[1] * n[2] <= max_cells) break;
     }
   }
   std::int64_t coord(double v, int a) const {
@@ -412,9 +414,15 @@ CellCones cell_cones(const CellEntries& entries, const std::vector<CentreBall>& 
   return cc;
 }
 
-// The balls that pair with another.
-std::vector<ConcaveZone::Ball> zone_balls(const std::vector<CentreBall>& balls, const Aabb3& box,
-                                          double R, double min_angle, double slack) {
+// The centre balls filed in a grid, each cell with the cone of its balls' cones.
+struct FiledBalls {
+  Grid grid;
+  CellEntries entries;
+  CellCones cones;
+};
+
+FiledBalls file_for_pairing(const std::vector<CentreBall>& balls, const Aabb3& box, double R,
+                            double slack) {
   double reach_sum = 0;
   std::size_t bounded = 0;
   for (const CentreBall& b : balls)
@@ -425,34 +433,55 @@ std::vector<ConcaveZone::Ball> zone_balls(const std::vector<CentreBall>& balls, 
   Aabb3 grown = box;
   grown.lo.array() -= 2 * R;
   grown.hi.array() += 2 * R;
-  const Grid grid(grown, 2 * (bounded ? reach_sum / double(bounded) : R) + slack);
-  const CellEntries entries = file_balls(grid, balls, 0.5 * slack);
-  const CellCones cones = cell_cones(entries, balls);
+  FiledBalls f{Grid(grown, 2 * (bounded ? reach_sum / double(bounded) : R) + slack), {}, {}};
+  f.entries = file_balls(f.grid, balls, 0.5 * slack);
+  f.cones = cell_cones(f.entries, balls);
+  return f;
+}
+
+// Whether ball a pairs with a ball filed in a cell it meets (cells whose cone lies within
+// min_angle of a's are skipped).
+bool pairs_with_filed(const CentreBall& a, const std::vector<CentreBall>& balls,
+                      const FiledBalls& f, double min_angle, double slack) {
+  bool hit = false;
+  each_cell(f.grid, a.at, a.reach + 0.5 * slack, [&](std::uint32_t c) {
+    if (hit) return;
+    const auto run = std::lower_bound(f.cones.cell.begin(), f.cones.cell.end(), c);
+    if (run == f.cones.cell.end() || *run != c) return;
+    const std::size_t k = std::size_t(run - f.cones.cell.begin());
+    const double needed = min_angle - a.half_angle - f.cones.spread[k] - tol::kConcaveZoneAngle;
+    if (!a.unbounded && needed > 0 && a.axis.dot(f.cones.axis[k]) > std::cos(needed)) return;
+    for (std::uint32_t e = f.cones.begin[k]; e < f.cones.begin[k + 1] && !hit; ++e)
+      hit = can_pair(a, balls[f.entries[e].second], min_angle, slack);
+  });
+  return hit;
+}
+
+// The balls that pair with another; nullopt as soon as more than max_hits do (the same
+// answer for any thread count: the count only grows).
+std::optional<std::vector<ConcaveZone::Ball>> zone_balls(const std::vector<CentreBall>& balls,
+                                                         const Aabb3& box, double R,
+                                                         double min_angle, double slack,
+                                                         std::size_t max_hits) {
+  const FiledBalls filed = file_for_pairing(balls, box, R, slack);
   // Queries in the order of their cells, so that the searches stay in cache.
-  std::vector<std::uint32_t> order(balls.size());
-  std::vector<std::uint32_t> home(balls.size());
+  std::vector<std::uint32_t> order(balls.size()), home(balls.size());
   for (std::uint32_t i = 0; i < balls.size(); ++i) {
     order[i] = i;
-    home[i] = std::uint32_t(grid.index(balls[i].at));
+    home[i] = std::uint32_t(filed.grid.index(balls[i].at));
   }
   par::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
     return home[x] != home[y] ? home[x] < home[y] : x < y;
   });
   std::vector<std::uint8_t> hit(balls.size(), 0);
+  std::atomic<std::size_t> hits{0};
   par::for_each(balls.size(), 1024, [&](std::size_t q) {
+    if (hits.load(std::memory_order_relaxed) > max_hits) return;
     const std::size_t i = order[q];
-    const CentreBall& a = balls[i];
-    each_cell(grid, a.at, a.reach + 0.5 * slack, [&](std::uint32_t c) {
-      if (hit[i]) return;
-      const auto run = std::lower_bound(cones.cell.begin(), cones.cell.end(), c);
-      if (run == cones.cell.end() || *run != c) return;
-      const std::size_t k = std::size_t(run - cones.cell.begin());
-      const double needed = min_angle - a.half_angle - cones.spread[k] - tol::kConcaveZoneAngle;
-      if (!a.unbounded && needed > 0 && a.axis.dot(cones.axis[k]) > std::cos(needed)) return;
-      for (std::uint32_t e = cones.begin[k]; e < cones.begin[k + 1] && !hit[i]; ++e)
-        hit[i] = can_pair(a, balls[entries[e].second], min_angle, slack);
-    });
+    hit[i] = pairs_with_filed(balls[i], balls, filed, min_angle, slack);
+    if (hit[i]) hits.fetch_add(1, std::memory_order_relaxed);
   });
+  if (hits.load() > max_hits) return std::nullopt;
   std::vector<ConcaveZone::Ball> out;
   for (std::size_t i = 0; i < balls.size(); ++i)
     if (hit[i]) out.push_back({balls[i].at, balls[i].reach});
@@ -506,7 +535,9 @@ std::vector<std::uint8_t> kept_cells(const Grid& grid, const std::vector<Concave
 std::vector<std::uint8_t> kept_facets(const TriangleMesh& mesh,
                                       const std::vector<ConcaveZone::Ball>& zone,
                                       const Aabb3& box, double R, double slack) {
-  const Grid grid(box, kKeepCellPerRadius * R);
+  // About 32 cells a facet at most: a coarse part gets coarse cells.
+  const auto cells = std::min<std::int64_t>(kMaxCells, 32 * std::int64_t(mesh.facets.size()) + 65536);
+  const Grid grid(box, kKeepCellPerRadius * R, cells);
   const std::vector<std::uint8_t> mark = kept_cells(grid, zone, R, slack);
   std::vector<std::uint8_t> keep(mesh.facets.size(), 0);
   par::for_each(mesh.facets.size(), 4096, [&](std::size_t f) {
@@ -536,7 +567,7 @@ bool ConcaveZone::holds(const Vec3& c) const {
 }
 
 ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle,
-                         double slack) {
+                         double slack, double max_paired_share) {
   Stopwatch clock;
   ConcaveZone z;
   z.slack = slack;
@@ -551,7 +582,15 @@ ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_ang
   {
     const std::vector<CentreBall> balls = centre_balls(facts, radius);
     z.elements = balls.size();
-    z.balls = zone_balls(balls, box, radius, min_angle, slack);
+    auto zone = zone_balls(balls, box, radius, min_angle, slack,
+                           std::size_t(max_paired_share * double(balls.size())));
+    if (!zone) {
+      z.keep.assign(mesh.facets.size(), 1);
+      z.keep_facets = mesh.facets.size();
+      z.build_s = clock.seconds();
+      return z;
+    }
+    z.balls = std::move(*zone);
   }
   z.keep = kept_facets(mesh, z.balls, box, radius, slack);
   Aabb3 grown = box;

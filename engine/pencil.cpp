@@ -90,10 +90,10 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
   Candidates z;
   if (!(p.step_down > 0)) return z;
   Stopwatch clock;
-  const ConcaveZone zone =
-      concave_zone(mesh, cutter.radius, p.min_angle_deg * std::numbers::pi / 180, p.tolerance);
+  const ConcaveZone zone = concave_zone(mesh, cutter.radius, p.min_angle_deg * std::numbers::pi / 180,
+                                        p.tolerance, p.zone_max_share);
   st.zone_s = zone.build_s;
-  const bool sliced = double(zone.keep_facets) <= p.zone_max_share * double(mesh.facets.size());
+  const bool sliced = zone.keep_facets < mesh.facets.size();
   st.zlevel_facets = sliced ? zone.keep_facets : mesh.facets.size();
   ZLevelOpParams zp;
   zp.step_down = p.step_down;

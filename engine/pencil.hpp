@@ -75,13 +75,14 @@ struct PencilParams {
   double stock = 0;  // mm the tool keeps from the part (and the floor); > -R, see above
   CutDirection direction = CutDirection::kAny;  // kAny: oriented for short air moves only
   // Internal (no job key): the z-levels slice only the concave zone (engine/concave_zone.hpp)
-  // when it keeps at most this share of the facets. A sliced subset has contours along its
-  // border on every level below it, so a zone keeping much of the part costs more than the
-  // whole: bunny00 (75 k facets, 200 mm, ball 5) keeps 51 % and its z-levels took 3.9 s
-  // against 1.9 s; its Loop x2 scan (1.2 M) keeps 20 % and took 7.4 s against 16.9 s
+  // when at most this share of its centre balls pair (concave_zone's max_paired_share). A
+  // sliced subset has contours along its border on every level below it, so a wide zone
+  // costs more than the whole part: bunny00 (75 k facets, 200 mm, ball 5) pairs 23 % and
+  // keeps 53 % of the facets, and its z-levels took 3.9 s sliced against 1.9 s whole; its
+  // Loop x2 scan (1.2 M) pairs 12 %, keeps 20 % and took 7.4 s against 16.9 s
   // (docs/performance.md, "The concave zone"). Tests set 0 (never) and 1 (always) to check
   // that the result does not depend on it.
-  double zone_max_share = 0.25;
+  double zone_max_share = 1.0 / 6;
 };
 
 // Empty when usable; else a message naming the bad key. (The stock's lower bound depends on
@@ -103,8 +104,8 @@ struct PencilPoint {
 struct PencilStats {
   std::uint64_t planes = 0, levels = 0;
   std::uint64_t zlevel_open_chains = 0;  // z-level contours left open (their junctions lost)
-  // Facets the z-levels sliced: the concave zone's (engine/concave_zone.hpp) when it keeps at
-  // most a quarter of the part, else all; zone_s: finding the zone (within zlevel_s).
+  // Facets the z-levels sliced: the concave zone's (engine/concave_zone.hpp) when it is narrow
+  // (PencilParams::zone_max_share), else all; zone_s: finding the zone (within zlevel_s).
   std::uint64_t zlevel_facets = 0;
   double zone_s = 0;
   std::uint64_t candidates = 0;     // sharp-concave junctions seen
