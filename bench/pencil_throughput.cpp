@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
                     "z-levels sliced %llu facets, zone %.2f s\n", "",
                     (unsigned long long)s.refined_points, (unsigned long long)s.lifted_points,
                     (unsigned long long)s.candidates, (unsigned long long)s.chains, share,
-                    (unsigned long long)s.zlevel_facets, s.zone_s);
+                    (unsigned long long)s.sliced_facets, s.zone_s);
         std::fflush(stdout);
       }
     }

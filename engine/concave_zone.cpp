@@ -566,6 +566,19 @@ bool ConcaveZone::holds(const Vec3& c) const {
   });
 }
 
+TriangleMesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone,
+                          std::vector<std::uint32_t>& source) {
+  TriangleMesh sub;
+  sub.vertices = mesh.vertices;
+  source.clear();
+  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
+    if (zone.keep[f]) {
+      sub.facets.push_back(mesh.facets[f]);
+      source.push_back(f);
+    }
+  return sub;
+}
+
 ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle,
                          double slack, double max_paired_share) {
   Stopwatch clock;

@@ -59,6 +59,12 @@ struct ConcaveZone {
   double slack = 0;
 };
 
+// The kept facets as a mesh of their own (the same vertices, the kept facets in order) and,
+// per facet, its index in `mesh` (source): its offset elements are the kept facets' whole
+// neighbourhoods, the edges and vertices at the border untrimmed by facets left out.
+TriangleMesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone,
+                          std::vector<std::uint32_t>& source);
+
 // `slack` (mm) widens the tests: contacts within it of the mesh count (the pencil's tolerance
 // for a contact on the part). When more than `max_paired_share` of the centre balls pair (a
 // wide zone: bunny00 at 200 mm, ball 5, pairs 23 % of them and keeps 53 % of the facets; its

@@ -86,20 +86,16 @@ void canonical_order(Candidates& c) {
 // family 2, layer = level index below the part's top `top`, in a canonical order (level,
 // position, elements): the same whether or not the z-levels sliced the concave zone only.
 Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, const PencilParams& p,
-                             double top, RunControl& control, PencilStats& st) {
+                             double top, const ConcaveZone* zone, RunControl& control,
+                             PencilStats& st) {
   Candidates z;
   if (!(p.step_down > 0)) return z;
   Stopwatch clock;
-  const ConcaveZone zone = concave_zone(mesh, cutter.radius, p.min_angle_deg * std::numbers::pi / 180,
-                                        p.tolerance, p.zone_max_share);
-  st.zone_s = zone.build_s;
-  const bool sliced = zone.keep_facets < mesh.facets.size();
-  st.zlevel_facets = sliced ? zone.keep_facets : mesh.facets.size();
   ZLevelOpParams zp;
   zp.step_down = p.step_down;
   zp.tolerance = p.tolerance;
   zp.condition = false;  // run_pencil conditioned the mesh
-  if (sliced) zp.zone = &zone;
+  zp.zone = zone;
   const ZLevelOpStats zs = run_zlevel(
       mesh, cutter, zp,
       [&](const ZLevelChunk& ch) {
@@ -123,12 +119,27 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
   return z;
 }
 
+// The part sliced to the concave zone (engine/concave_zone.hpp) by the drive planes of the
+// whole part (its rectangle): `source` names each sliced facet's mesh facet.
+struct ZoneSlice {
+  const ConcaveZone& zone;
+  const std::vector<std::uint32_t>& source;
+  std::array<double, 4> rect;
+};
+
+// A junction's element on the sliced part as the whole mesh's.
+ElementRef whole_mesh_ref(ElementRef r, const ZoneSlice* slice) {
+  if (slice && r.kind == 0) r.a = slice->source[std::size_t(r.a)];
+  return r;
+}
+
 // The sharp-concave junctions of both drive-plane families (not the floor's: its junctions
 // are not creases) as candidates of family 0 (x planes) and 1 (y planes), layer = plane
 // index; `rect` is the scanned rectangle.
 Candidates drive_plane_candidates(const ScanElements& se, const Cutter& cutter,
-                                  const PencilParams& p, double floor_z, RunControl& control,
-                                  PencilStats& st, std::array<double, 4>& rect) {
+                                  const PencilParams& p, double floor_z, const ZoneSlice* slice,
+                                  RunControl& control, PencilStats& st,
+                                  std::array<double, 4>& rect) {
   Candidates out;
   Stopwatch clock;
   ScanParams sp;
@@ -137,6 +148,7 @@ Candidates drive_plane_candidates(const ScanElements& se, const Cutter& cutter,
   sp.tolerance = p.tolerance;
   sp.margin = p.margin;
   sp.floor_z = floor_z;
+  if (slice) sp.rect = slice->rect;
   std::vector<ScanJunctionRecord> js;
   const ScanStats ss = run_scan(
       se, cutter, sp,
@@ -144,7 +156,9 @@ Candidates drive_plane_candidates(const ScanElements& se, const Cutter& cutter,
         // The floor is not the part: its junctions are not creases.
         for (const ScanJunctionRecord& j : ch.junctions)
           if (j.kind == std::uint8_t(JunctionKind::kSharpConcave) && j.element1.kind != 3 &&
-              j.element2.kind != 3)
+              j.element2.kind != 3 &&
+              (!slice || slice->zone.holds(Vec3(j.position[0], j.position[1],
+                                                j.position[2] + cutter.radius))))
             js.push_back(j);
       },
       control);
@@ -159,8 +173,9 @@ Candidates drive_plane_candidates(const ScanElements& se, const Cutter& cutter,
     c.family = x_line ? 0 : 1;
     c.layer = std::uint32_t(x_line ? j.path : j.path - std::int64_t(ss.planes_x));
     out.cand.push_back(c);
-    out.refs.push_back({j.element1, j.element2});
+    out.refs.push_back({whole_mesh_ref(j.element1, slice), whole_mesh_ref(j.element2, slice)});
   }
+  canonical_order(out);
   st.scan_s = clock.seconds();
   return out;
 }
@@ -452,13 +467,31 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const double min_angle = p.min_angle_deg * std::numbers::pi / 180;
   const Aabb3 box = bounding_box(mesh);
   const double floor_z = p.floor_z.value_or(box.lo.z());
+  // The concave zone: where the part can hold a pencil bi-contact. When it is narrow, the
+  // z-levels and the drive planes slice only its kept facets.
+  const ConcaveZone zone =
+      concave_zone(mesh, cutter.radius, min_angle, p.tolerance, p.zone_max_share);
+  st.zone_s = zone.build_s;
+  const bool sliced = zone.keep_facets < mesh.facets.size();
+  st.sliced_facets = zone.keep_facets;
   // Candidates from z-levels first (appended after the drive planes' below): their elements
   // are freed before the drive planes' are built, so the two never take memory at once.
-  const Candidates z = zlevel_candidates(mesh, cutter, p, box.hi.z(), control, st);
-  const ScanElements se = build_scan_elements(mesh, cutter.radius);
-  st.elements_s = se.build_s;
+  const Candidates z = zlevel_candidates(mesh, cutter, p, box.hi.z(), sliced ? &zone : nullptr,
+                                         control, st);
   std::array<double, 4> rect{};  // the scanned rectangle
-  Candidates cand = drive_plane_candidates(se, cutter, p, floor_z, control, st, rect);
+  Candidates cand;
+  if (sliced) {
+    std::vector<std::uint32_t> source;
+    const ScanElements part = build_scan_elements(kept_submesh(mesh, zone, source), cutter.radius);
+    st.elements_s += part.build_s;
+    const ZoneSlice slice{zone, source, {box.lo.x() - p.margin, box.lo.y() - p.margin,
+                                         box.hi.x() + p.margin, box.hi.y() + p.margin}};
+    cand = drive_plane_candidates(part, cutter, p, floor_z, &slice, control, st, rect);
+  }
+  // The whole part's elements: the tracing and the refinement follow creases to their ends.
+  const ScanElements se = build_scan_elements(mesh, cutter.radius);
+  st.elements_s += se.build_s;
+  if (!sliced) cand = drive_plane_candidates(se, cutter, p, floor_z, nullptr, control, st, rect);
   cand.cand.insert(cand.cand.end(), z.cand.begin(), z.cand.end());
   cand.refs.insert(cand.refs.end(), z.refs.begin(), z.refs.end());
   st.candidates = cand.cand.size();

@@ -74,8 +74,8 @@ struct PencilParams {
   std::optional<double> floor_z;
   double stock = 0;  // mm the tool keeps from the part (and the floor); > -R, see above
   CutDirection direction = CutDirection::kAny;  // kAny: oriented for short air moves only
-  // Internal (no job key): the z-levels slice only the concave zone (engine/concave_zone.hpp)
-  // when at most this share of its centre balls pair (concave_zone's max_paired_share). A
+  // Internal (no job key): the z-levels and the drive planes slice only the concave zone
+  // (engine/concave_zone.hpp) when at most this share of its centre balls pair (concave_zone's max_paired_share). A
   // sliced subset has contours along its border on every level below it, so a wide zone
   // costs more than the whole part: bunny00 (75 k facets, 200 mm, ball 5) pairs 23 % and
   // keeps 53 % of the facets, and its z-levels took 3.9 s sliced against 1.9 s whole; its
@@ -104,9 +104,10 @@ struct PencilPoint {
 struct PencilStats {
   std::uint64_t planes = 0, levels = 0;
   std::uint64_t zlevel_open_chains = 0;  // z-level contours left open (their junctions lost)
-  // Facets the z-levels sliced: the concave zone's (engine/concave_zone.hpp) when it is narrow
-  // (PencilParams::zone_max_share), else all; zone_s: finding the zone (within zlevel_s).
-  std::uint64_t zlevel_facets = 0;
+  // Facets the z-levels and the drive planes sliced for candidates: the concave zone's
+  // (engine/concave_zone.hpp) when it is narrow (PencilParams::zone_max_share), else all;
+  // zone_s: finding the zone.
+  std::uint64_t sliced_facets = 0;
   double zone_s = 0;
   std::uint64_t candidates = 0;     // sharp-concave junctions seen
   std::uint64_t pencil_points = 0;  // with angle >= min_angle

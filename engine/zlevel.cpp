@@ -56,21 +56,6 @@ void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
   }
 }
 
-// The zone's kept facets as a mesh of their own (the same vertices) and, per facet, its index
-// in `mesh`: their offset elements are the kept facets' whole neighbourhoods, the edges and
-// vertices at the zone's border untrimmed by facets left out.
-TriangleMesh zone_submesh(const TriangleMesh& mesh, const ConcaveZone& zone,
-                          std::vector<std::uint32_t>& source) {
-  TriangleMesh sub;
-  sub.vertices = mesh.vertices;
-  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
-    if (zone.keep[f]) {
-      sub.facets.push_back(mesh.facets[f]);
-      source.push_back(f);
-    }
-  return sub;
-}
-
 struct LevelOut {
   ZLevelChunk chunk;
   std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
@@ -98,7 +83,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   // Sliced for the ball grown by the largest move (same centres: kernel tip = z - grow).
   const double grow = st.condition.max_move, R = cutter.radius + grow;
   std::vector<std::uint32_t> zone_source;  // the mesh facet behind each sliced facet
-  const TriangleMesh zone_part = p.zone ? zone_submesh(part, *p.zone, zone_source) : TriangleMesh{};
+  const TriangleMesh zone_part = p.zone ? kept_submesh(part, *p.zone, zone_source) : TriangleMesh{};
   const OffsetElements el =
       build_offset_elements_parallel(p.zone ? zone_part : part, R, false, Coplanar::kVertical);
   auto ref = [&](std::uint32_t id) {

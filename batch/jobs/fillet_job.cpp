@@ -33,7 +33,7 @@ void push_fillet_stats(const FilletStats& st, std::vector<out::StatValue>& stats
   const out::StatValue reference[] = {
       {"reference_planes", i64(p.planes), ""},
       {"reference_levels", i64(p.levels), ""},
-      {"reference_zlevel_facets", i64(p.zlevel_facets), ""},
+      {"reference_sliced_facets", i64(p.sliced_facets), ""},
       {"reference_candidates", i64(p.candidates), ""},
       {"reference_pencil_points", i64(p.pencil_points), ""},
       {"reference_kept_points", i64(p.kept_points), ""},

@@ -54,7 +54,7 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
       {"planes", i64(st.planes), ""},
       {"levels", i64(st.levels), ""},
       {"zlevel_open_chains", i64(st.zlevel_open_chains), ""},
-      {"zlevel_facets", i64(st.zlevel_facets), ""},
+      {"sliced_facets", i64(st.sliced_facets), ""},
       {"condition_planes", i64(st.condition.planes), ""},
       {"condition_moved_vertices", i64(st.condition.moved_vertices), ""},
       {"condition_max_move", st.condition.max_move, "mm"},

@@ -273,8 +273,8 @@ TEST(ConcaveZone, PencilIsTheSameSlicedOrWhole) {
     const PencilResult whole = run_pencil(m, ball_cutter(5), p, control);
     p.zone_max_share = 1;
     const PencilResult sliced = run_pencil(m, ball_cutter(5), p, control);
-    EXPECT_EQ(whole.stats.zlevel_facets, m.facets.size()) << name;
-    EXPECT_LT(sliced.stats.zlevel_facets, m.facets.size()) << name;
+    EXPECT_EQ(whole.stats.sliced_facets, m.facets.size()) << name;
+    EXPECT_LT(sliced.stats.sliced_facets, m.facets.size()) << name;
     ASSERT_EQ(whole.paths.size(), sliced.paths.size()) << name;
     for (std::size_t i = 0; i < whole.paths.size(); ++i) {
       ASSERT_EQ(whole.paths[i].size(), sliced.paths[i].size()) << name << " path " << i;
