@@ -139,7 +139,8 @@ std::vector<std::int8_t> facet_sides(const TriangleMesh& mesh, const std::vector
     }
   std::vector<double> volume(nv, 0);
   std::vector<std::uint8_t> open(nv, 0);
-  const Vec3 o = 0.5 * (bounding_box(mesh).lo + bounding_box(mesh).hi);
+  const Aabb3 box = bounding_box(mesh);
+  const Vec3 o = 0.5 * (box.lo + box.hi);
   for (const auto& t : mesh.facets) {
     const std::uint32_t c = find(t[0]);
     const Vec3 a = mesh.vertices[t[0]] - o, b = mesh.vertices[t[1]] - o, d = mesh.vertices[t[2]] - o;
@@ -305,6 +306,7 @@ std::vector<CentreBall> centre_balls(const MeshFacts& m, double R) {
   std::vector<std::vector<CentreBall>> parts(blocks);
   par::for_each(blocks, 1, [&](std::size_t b) {
     BallSink sink{&parts[b], R};
+    parts[b].reserve(2 * kBlock);
     for (std::size_t i = b * kBlock; i < std::min(nf + nv, (b + 1) * kBlock); ++i) emit(i, sink);
   });
   std::vector<CentreBall> balls;
@@ -566,15 +568,23 @@ bool ConcaveZone::holds(const Vec3& c) const {
   });
 }
 
-TriangleMesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone,
-                          std::vector<std::uint32_t>& source) {
-  TriangleMesh sub;
-  sub.vertices = mesh.vertices;
-  source.clear();
+KeptSubmesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone) {
+  KeptSubmesh sub;
+  std::vector<std::uint32_t> index(mesh.vertices.size(), kNone);
+  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
+    if (zone.keep[f])
+      for (std::uint32_t v : mesh.facets[f]) index[v] = 0;
+  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = std::uint32_t(sub.vertex.size());
+      sub.vertex.push_back(v);
+      sub.mesh.vertices.push_back(mesh.vertices[v]);
+    }
   for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
     if (zone.keep[f]) {
-      sub.facets.push_back(mesh.facets[f]);
-      source.push_back(f);
+      const auto& t = mesh.facets[f];
+      sub.mesh.facets.push_back({index[t[0]], index[t[1]], index[t[2]]});
+      sub.facet.push_back(f);
     }
   return sub;
 }

@@ -59,11 +59,23 @@ struct ConcaveZone {
   double slack = 0;
 };
 
-// The kept facets as a mesh of their own (the same vertices, the kept facets in order) and,
-// per facet, its index in `mesh` (source): its offset elements are the kept facets' whole
-// neighbourhoods, the edges and vertices at the border untrimmed by facets left out.
-TriangleMesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone,
-                          std::vector<std::uint32_t>& source);
+// The kept facets as a mesh of their own (their vertices and facets in mesh order): its offset
+// elements are the kept facets' whole neighbourhoods, the edges and vertices at the border
+// untrimmed by facets left out. `facet` and `vertex` name each one's index in `mesh`.
+struct KeptSubmesh {
+  TriangleMesh mesh;
+  std::vector<std::uint32_t> facet, vertex;
+  // An element of the submesh (kind 0 facet, 1 edge, 2 vertex; engine/offset_elements_build.hpp
+  // ElementRef's fields) as the mesh's.
+  template <class Ref>
+  Ref in_mesh(Ref r) const {
+    if (r.kind == 0) r.a = facet[std::size_t(r.a)];
+    if (r.kind == 1 || r.kind == 2) r.a = vertex[std::size_t(r.a)];
+    if (r.kind == 1) r.b = vertex[std::size_t(r.b)];
+    return r;
+  }
+};
+KeptSubmesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone);
 
 // `slack` (mm) widens the tests: contacts within it of the mesh count (the pencil's tolerance
 // for a contact on the part). When more than `max_paired_share` of the centre balls pair (a

@@ -120,17 +120,16 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
 }
 
 // The part sliced to the concave zone (engine/concave_zone.hpp) by the drive planes of the
-// whole part (its rectangle): `source` names each sliced facet's mesh facet.
+// whole part (its rectangle).
 struct ZoneSlice {
   const ConcaveZone& zone;
-  const std::vector<std::uint32_t>& source;
+  const KeptSubmesh& part;
   std::array<double, 4> rect;
 };
 
 // A junction's element on the sliced part as the whole mesh's.
-ElementRef whole_mesh_ref(ElementRef r, const ZoneSlice* slice) {
-  if (slice && r.kind == 0) r.a = slice->source[std::size_t(r.a)];
-  return r;
+ElementRef whole_mesh_ref(const ElementRef& r, const ZoneSlice* slice) {
+  return slice ? slice->part.in_mesh(r) : r;
 }
 
 // The sharp-concave junctions of both drive-plane families (not the floor's: its junctions
@@ -481,11 +480,11 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   std::array<double, 4> rect{};  // the scanned rectangle
   Candidates cand;
   if (sliced) {
-    std::vector<std::uint32_t> source;
-    const ScanElements part = build_scan_elements(kept_submesh(mesh, zone, source), cutter.radius);
+    const KeptSubmesh kept = kept_submesh(mesh, zone);
+    const ScanElements part = build_scan_elements(kept.mesh, cutter.radius);
     st.elements_s += part.build_s;
-    const ZoneSlice slice{zone, source, {box.lo.x() - p.margin, box.lo.y() - p.margin,
-                                         box.hi.x() + p.margin, box.hi.y() + p.margin}};
+    const ZoneSlice slice{zone, kept, {box.lo.x() - p.margin, box.lo.y() - p.margin,
+                                       box.hi.x() + p.margin, box.hi.y() + p.margin}};
     cand = drive_plane_candidates(part, cutter, p, floor_z, &slice, control, st, rect);
   }
   // The whole part's elements: the tracing and the refinement follow creases to their ends.
