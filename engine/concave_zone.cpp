@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "engine/concave_zone_detail.hpp"
 #include "engine/parallel.hpp"
 #include "engine/run_control.hpp"
 #include "kernels/geom/tolerance.hpp"
@@ -18,8 +19,11 @@ namespace ncpath {
 
 namespace {
 
+using concave_zone_detail::CentreBall;
+using concave_zone_detail::kNone;
+
 constexpr double kKeepCellPerRadius = 0.25;  // the kept region's cell edge, in R
-constexpr double kLookupCellPerRadius = 1;     // holds()'s cell edge, in R
+constexpr double kLookupCellPerRadius = 1;   // holds()'s cell edge, in R
 constexpr std::int64_t kMaxCells = std::int64_t(1) << 25;
 
 // A uniform grid over a box; cells grow until there are at most max_cells.
@@ -46,280 +50,6 @@ struct Grid {
   }
 };
 
-struct FacetGeometry {
-  std::vector<Vec3> normal;  // unit, as wound; zero when degenerate
-  std::vector<std::uint8_t> degenerate;
-  double longest_edge = 0;
-};
-
-FacetGeometry facet_geometry(const TriangleMesh& mesh) {
-  FacetGeometry g;
-  const std::size_t nf = mesh.facets.size();
-  g.normal.assign(nf, Vec3::Zero());
-  g.degenerate.assign(nf, 0);
-  std::vector<double> longest(nf, 0);
-  par::for_each(nf, 4096, [&](std::size_t f) {
-    const auto& t = mesh.facets[f];
-    const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
-    const Vec3 n = (b - a).cross(c - a);
-    const double len = n.norm();
-    longest[f] = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    if (len >= tol::kDegenerateArea2)
-      g.normal[f] = n / len;
-    else
-      g.degenerate[f] = 1;
-  });
-  for (double l : longest) g.longest_edge = std::max(g.longest_edge, l);
-  return g;
-}
-
-// Facets at each vertex (CSR, facet order).
-struct Stars {
-  std::vector<std::uint32_t> offset, facet;
-};
-
-Stars vertex_stars(const TriangleMesh& mesh) {
-  Stars s;
-  s.offset.assign(mesh.vertices.size() + 1, 0);
-  for (const auto& t : mesh.facets)
-    for (std::uint32_t v : t) ++s.offset[v + 1];
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) s.offset[v + 1] += s.offset[v];
-  s.facet.resize(s.offset.back());
-  std::vector<std::uint32_t> fill(s.offset.begin(), s.offset.end() - 1);
-  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
-    for (std::uint32_t v : mesh.facets[f]) s.facet[fill[v]++] = f;
-  return s;
-}
-
-// 1 where the vertex's star is not a disk wound consistently: some edge at it is not used by
-// exactly two facets in opposite directions (or a facet there is degenerate).
-std::vector<std::uint8_t> irregular_vertices(const TriangleMesh& mesh, const Stars& stars,
-                                             const FacetGeometry& g) {
-  const std::size_t nv = mesh.vertices.size();
-  std::vector<std::uint8_t> bad(nv, 0);
-  par::for_ranges(nv, 4096, [&](std::size_t b, std::size_t e) {
-    std::vector<std::uint32_t> out, in;
-    for (std::size_t v = b; v < e; ++v) {
-      out.clear();
-      in.clear();
-      for (std::uint32_t k = stars.offset[v]; k < stars.offset[v + 1]; ++k) {
-        const std::uint32_t f = stars.facet[k];
-        const auto& t = mesh.facets[f];
-        const int c = t[0] == v ? 0 : t[1] == v ? 1 : 2;
-        if (g.degenerate[f] || t[(c + 1) % 3] == v || t[(c + 2) % 3] == v) bad[v] = 1;
-        out.push_back(t[(c + 1) % 3]);  // edge v -> next
-        in.push_back(t[(c + 2) % 3]);   // edge prev -> v
-      }
-      std::sort(out.begin(), out.end());
-      std::sort(in.begin(), in.end());
-      if (out != in || std::adjacent_find(out.begin(), out.end()) != out.end()) bad[v] = 1;
-    }
-  });
-  return bad;
-}
-
-// Which side a ball touches each facet from: +1 along its normal as wound, -1 against it, 0
-// either. A closed component (every vertex regular) is touched from outside only: a ball on
-// the drop-cutter surface is clear of the mesh and joined to z = +inf by free space, so it is
-// outside every closed component; outside is where the normals point when the component's
-// signed volume is positive. (An inner shell's side may come out wrong; no ball from above
-// reaches it.)
-std::vector<std::int8_t> facet_sides(const TriangleMesh& mesh, const std::vector<std::uint8_t>& irregular) {
-  const std::size_t nv = mesh.vertices.size(), nf = mesh.facets.size();
-  std::vector<std::uint32_t> parent(nv);
-  for (std::uint32_t v = 0; v < nv; ++v) parent[v] = v;
-  auto find = [&](std::uint32_t v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  for (const auto& t : mesh.facets)
-    for (int k = 1; k < 3; ++k) {
-      const std::uint32_t a = find(t[0]), b = find(t[k]);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-  std::vector<double> volume(nv, 0);
-  std::vector<std::uint8_t> open(nv, 0);
-  const Aabb3 box = bounding_box(mesh);
-  const Vec3 o = 0.5 * (box.lo + box.hi);
-  for (const auto& t : mesh.facets) {
-    const std::uint32_t c = find(t[0]);
-    const Vec3 a = mesh.vertices[t[0]] - o, b = mesh.vertices[t[1]] - o, d = mesh.vertices[t[2]] - o;
-    volume[c] += a.dot(b.cross(d));
-    for (std::uint32_t v : t) open[c] |= irregular[v];
-  }
-  std::vector<std::int8_t> side(nf, 0);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::uint32_t c = find(mesh.facets[f][0]);
-    if (!open[c] && volume[c] != 0) side[f] = volume[c] > 0 ? 1 : -1;
-  }
-  return side;
-}
-
-struct MeshFacts {
-  const TriangleMesh& mesh;
-  const Stars& stars;
-  const FacetGeometry& g;
-  const std::vector<std::uint8_t>& irregular;
-  const std::vector<std::int8_t>& side;
-};
-
-constexpr std::uint32_t kNone = ~std::uint32_t(0);
-
-// Where contacts on one element (on one side) put the ball centre: within `reach` of `at`.
-struct CentreBall {
-  Vec3 at;
-  double reach = 0;
-  Vec3 axis = Vec3::UnitZ();  // the side's normal cone
-  double half_angle = std::numbers::pi;
-  std::array<std::uint32_t, 3> verts{kNone, kNone, kNone};  // the element's mesh vertices
-  bool unbounded = true;
-};
-
-// Collects an element's balls.
-struct BallSink {
-  std::vector<CentreBall>* out;
-  double R = 0;
-  void add(const CentreBall& b) { out->push_back(b); }
-  void unbounded(const Vec3& centre, double size, std::array<std::uint32_t, 3> verts) {
-    CentreBall b;
-    b.at = centre;
-    b.reach = size + R;
-    b.verts = verts;
-    add(b);
-  }
-  // A bounded cone: dropped when a ball from above cannot touch with a normal in it.
-  void cone(const Vec3& centre, double size, const Vec3& axis, double half,
-            std::array<std::uint32_t, 3> verts) {
-    if (std::asin(std::clamp(-axis.z(), -1.0, 1.0)) >= half + tol::kConcaveZoneAngle) return;
-    add({centre + R * axis, size + 2 * R * std::sin(0.5 * half), axis, half, verts, false});
-  }
-};
-
-// The signs (as wound) of the sides a ball touches facet f from: its own side, or both.
-int side_count(const MeshFacts& m, std::uint32_t f) { return m.side[f] != 0 ? 1 : 2; }
-double side_sign(const MeshFacts& m, std::uint32_t f, int k) {
-  return m.side[f] != 0 ? double(m.side[f]) : (k == 0 ? 1.0 : -1.0);
-}
-
-void facet_balls(const MeshFacts& m, std::uint32_t f, BallSink& sink) {
-  if (m.g.degenerate[f]) return;  // its edges and vertices are irregular: unbounded balls
-  const auto& t = m.mesh.facets[f];
-  const Vec3 c = (m.mesh.vertices[t[0]] + m.mesh.vertices[t[1]] + m.mesh.vertices[t[2]]) / 3;
-  double r = 0;
-  for (std::uint32_t v : t) r = std::max(r, (m.mesh.vertices[v] - c).norm());
-  for (int k = 0; k < side_count(m, f); ++k)
-    sink.cone(c, r, side_sign(m, f, k) * m.g.normal[f], tol::kConcaveZoneAngle, {t[0], t[1], t[2]});
-}
-
-// The facet holding the half-edge b -> a, at the regular vertex a.
-std::uint32_t opposite_facet(const MeshFacts& m, std::uint32_t a, std::uint32_t b) {
-  for (std::uint32_t k = m.stars.offset[a]; k < m.stars.offset[a + 1]; ++k) {
-    const auto& t = m.mesh.facets[m.stars.facet[k]];
-    for (int c = 0; c < 3; ++c)
-      if (t[c] == b && t[(c + 1) % 3] == a) return m.stars.facet[k];
-  }
-  return kNone;
-}
-
-std::uint32_t third_vertex(const std::array<std::uint32_t, 3>& t, std::uint32_t a, std::uint32_t b) {
-  for (std::uint32_t v : t)
-    if (v != a && v != b) return v;
-  return t[0];
-}
-
-// Edge t[k] -> t[k + 1] of facet f, given once (by the facet where it runs up in index) when
-// both ends are regular, else by every facet as an unbounded ball.
-void edge_balls(const MeshFacts& m, std::uint32_t f, int k, BallSink& sink) {
-  const auto& t = m.mesh.facets[f];
-  const std::uint32_t a = t[k], b = t[(k + 1) % 3];
-  const Vec3 &pa = m.mesh.vertices[a], &pb = m.mesh.vertices[b];
-  const Vec3 mid = 0.5 * (pa + pb);
-  const double half_len = 0.5 * (pb - pa).norm();
-  if (m.irregular[a] || m.irregular[b]) return sink.unbounded(mid, half_len, {a, b, kNone});
-  if (a > b) return;
-  const std::uint32_t g = opposite_facet(m, a, b);
-  if (g == kNone || m.g.degenerate[g]) return sink.unbounded(mid, half_len, {a, b, kNone});
-  const Vec3 wg = m.mesh.vertices[third_vertex(m.mesh.facets[g], a, b)] - pa;
-  for (int s = 0; s < side_count(m, f); ++s) {
-    const double sign = side_sign(m, f, s);
-    const Vec3 nf = sign * m.g.normal[f], ng = sign * m.g.normal[g];
-    // Concave seen from this side: g rises above f's plane; a ball there cuts one of them.
-    if (nf.dot(wg) > tol::kConcaveZoneAngle * wg.norm()) continue;
-    const Vec3 sum = nf + ng;
-    if (!(sum.norm() > tol::kConcaveZoneMinCos)) {
-      sink.unbounded(mid, half_len, {a, b, kNone});
-      continue;
-    }
-    const double half = 0.5 * std::atan2(nf.cross(ng).norm(), nf.dot(ng)) + tol::kConcaveZoneAngle;
-    sink.cone(mid, half_len, sum.normalized(), half, {a, b, kNone});
-  }
-}
-
-void vertex_balls(const MeshFacts& m, std::uint32_t v, BallSink& sink) {
-  const std::uint32_t k0 = m.stars.offset[v], k1 = m.stars.offset[v + 1];
-  if (k0 == k1) return;  // unreferenced
-  const Vec3& p = m.mesh.vertices[v];
-  if (m.irregular[v]) return sink.unbounded(p, 0, {v, kNone, kNone});
-  const std::uint32_t f0 = m.stars.facet[k0];
-  for (int s = 0; s < side_count(m, f0); ++s) {
-    auto normal = [&](std::uint32_t f) {
-      return m.side[f] != 0 ? double(m.side[f]) * m.g.normal[f] : side_sign(m, f0, s) * m.g.normal[f];
-    };
-    Vec3 sum = Vec3::Zero();
-    for (std::uint32_t k = k0; k < k1; ++k) sum += normal(m.stars.facet[k]);
-    if (!(sum.norm() > 0)) {
-      sink.unbounded(p, 0, {v, kNone, kNone});
-      continue;
-    }
-    const Vec3 axis = sum.normalized();
-    double min_cos = 1;
-    for (std::uint32_t k = k0; k < k1; ++k) min_cos = std::min(min_cos, normal(m.stars.facet[k]).dot(axis));
-    if (!(min_cos > tol::kConcaveZoneMinCos)) {
-      sink.unbounded(p, 0, {v, kNone, kNone});
-      continue;
-    }
-    const double half = std::acos(min_cos) + tol::kConcaveZoneAngle;
-    // Every edge rising above each tangent plane in the cone: no ball touches the vertex.
-    bool rises = true;
-    for (std::uint32_t k = k0; k < k1 && rises; ++k)
-      for (std::uint32_t u : m.mesh.facets[m.stars.facet[k]])
-        if (u != v && axis.dot(m.mesh.vertices[u] - p) <= std::sin(half) * (m.mesh.vertices[u] - p).norm())
-          rises = false;
-    if (!rises) sink.cone(p, 0, axis, half, {v, kNone, kNone});
-  }
-}
-
-// Every element's balls, in facet order (its interior, then its edges), then vertex order.
-std::vector<CentreBall> centre_balls(const MeshFacts& m, double R) {
-  const std::size_t nf = m.mesh.facets.size(), nv = m.mesh.vertices.size();
-  auto emit = [&](std::size_t i, BallSink& sink) {
-    if (i < nf) {
-      facet_balls(m, std::uint32_t(i), sink);
-      for (int k = 0; k < 3; ++k) edge_balls(m, std::uint32_t(i), k, sink);
-    } else {
-      vertex_balls(m, std::uint32_t(i - nf), sink);
-    }
-  };
-  // Blocks of elements, each filling its own vector, joined in block order.
-  constexpr std::size_t kBlock = 4096;
-  const std::size_t blocks = (nf + nv + kBlock - 1) / kBlock;
-  std::vector<std::vector<CentreBall>> parts(blocks);
-  par::for_each(blocks, 1, [&](std::size_t b) {
-    BallSink sink{&parts[b], R};
-    parts[b].reserve(2 * kBlock);
-    for (std::size_t i = b * kBlock; i < std::min(nf + nv, (b + 1) * kBlock); ++i) emit(i, sink);
-  });
-  std::vector<CentreBall> balls;
-  std::size_t total = 0;
-  for (const auto& part : parts) total += part.size();
-  balls.reserve(total);
-  for (auto& part : parts) {
-    balls.insert(balls.end(), part.begin(), part.end());
-    std::vector<CentreBall>().swap(part);
-  }
-  return balls;
-}
-
 // Balls filed under every grid cell their box (grown by `grow`) meets: (cell, ball), sorted.
 using CellEntries = std::vector<std::pair<std::uint32_t, std::uint32_t>>;
 
@@ -339,8 +69,9 @@ template <class Ball>
 CellEntries file_balls(const Grid& grid, const std::vector<Ball>& balls, double grow) {
   CellEntries entries;
   for (std::uint32_t i = 0; i < balls.size(); ++i)
-    each_cell(grid, balls[i].at, balls[i].reach + grow,
-              [&](std::uint32_t c) { entries.push_back({c, i}); });
+    each_cell(grid, balls[i].at, balls[i].reach + grow, [&](std::uint32_t c) {
+      entries.push_back({c, i});
+    });
   par::sort(entries.begin(), entries.end(), std::less<>());
   return entries;
 }
@@ -350,7 +81,8 @@ template <class Use>
 bool any_filed(const Grid& grid, const CellEntries& entries, const Vec3& p, double d, Use&& use) {
   bool found = false;
   each_cell(grid, p, d, [&](std::uint32_t c) {
-    auto it = std::lower_bound(entries.begin(), entries.end(), std::pair<std::uint32_t, std::uint32_t>{c, 0});
+    auto it = std::lower_bound(entries.begin(), entries.end(),
+                               std::pair<std::uint32_t, std::uint32_t>{c, 0});
     for (; !found && it != entries.end() && it->first == c; ++it) found = use(it->second);
   });
   return found;
@@ -360,7 +92,9 @@ bool any_filed(const Grid& grid, const CellEntries& entries, const Vec3& p, doub
 // vertex, an edge and its end): no ball touches both at two points with different normals
 // (the two contacts would lie in one plane or line that the normals' difference leaves).
 bool incident(const CentreBall& a, const CentreBall& b) {
-  auto count = [](const CentreBall& x) { return 3 - int(std::count(x.verts.begin(), x.verts.end(), kNone)); };
+  auto count = [](const CentreBall& x) {
+    return 3 - int(std::count(x.verts.begin(), x.verts.end(), kNone));
+  };
   const CentreBall& small = count(a) <= count(b) ? a : b;
   const CentreBall& large = count(a) <= count(b) ? b : a;
   for (std::uint32_t v : small.verts)
@@ -408,7 +142,8 @@ CellCones cell_cones(const CellEntries& entries, const std::vector<CentreBall>& 
     double spread = 0;
     for (std::uint32_t e = cc.begin[k]; e < cc.begin[k + 1]; ++e) {
       const CentreBall& b = balls[entries[e].second];
-      spread = std::max(spread, std::atan2(axis.cross(b.axis).norm(), axis.dot(b.axis)) + b.half_angle);
+      spread =
+          std::max(spread, std::atan2(axis.cross(b.axis).norm(), axis.dot(b.axis)) + b.half_angle);
     }
     cc.axis[k] = axis;
     cc.spread[k] = spread + tol::kConcaveZoneAngle;
@@ -503,7 +238,8 @@ std::vector<std::uint8_t> kept_cells(const Grid& grid, const std::vector<Concave
               [&](std::uint32_t c) {
                 const std::int64_t i = c % grid.n[0], j = (c / grid.n[0]) % grid.n[1],
                                    k = c / (grid.n[0] * grid.n[1]);
-                const Vec3 q = grid.lo + grid.h * Vec3(double(i) + 0.5, double(j) + 0.5, double(k) + 0.5);
+                const Vec3 q =
+                    grid.lo + grid.h * Vec3(double(i) + 0.5, double(j) + 0.5, double(k) + 0.5);
                 const Vec3 gap = (around.lo - q).cwiseMax(q - around.hi).cwiseMax(0.0);
                 if (gap.squaredNorm() <= d * d) mark[c] = 1;
               });
@@ -535,10 +271,11 @@ std::vector<std::uint8_t> kept_cells(const Grid& grid, const std::vector<Concave
 
 // Facets whose box meets a kept cell.
 std::vector<std::uint8_t> kept_facets(const TriangleMesh& mesh,
-                                      const std::vector<ConcaveZone::Ball>& zone,
-                                      const Aabb3& box, double R, double slack) {
+                                      const std::vector<ConcaveZone::Ball>& zone, const Aabb3& box,
+                                      double R, double slack) {
   // About 32 cells a facet at most: a coarse part gets coarse cells.
-  const auto cells = std::min<std::int64_t>(kMaxCells, 32 * std::int64_t(mesh.facets.size()) + 65536);
+  const auto cells =
+      std::min<std::int64_t>(kMaxCells, 32 * std::int64_t(mesh.facets.size()) + 65536);
   const Grid grid(box, kKeepCellPerRadius * R, cells);
   const std::vector<std::uint8_t> mark = kept_cells(grid, zone, R, slack);
   std::vector<std::uint8_t> keep(mesh.facets.size(), 0);
@@ -553,7 +290,8 @@ std::vector<std::uint8_t> kept_facets(const TriangleMesh& mesh,
     }
     for (std::int64_t k = lo[2]; k <= hi[2] && !any; ++k)
       for (std::int64_t j = lo[1]; j <= hi[1] && !any; ++j)
-        for (std::int64_t i = lo[0]; i <= hi[0] && !any; ++i) any = mark[std::size_t(grid.index(i, j, k))];
+        for (std::int64_t i = lo[0]; i <= hi[0] && !any; ++i)
+          any = mark[std::size_t(grid.index(i, j, k))];
     keep[f] = any;
   });
   return keep;
@@ -589,21 +327,16 @@ KeptSubmesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone) {
   return sub;
 }
 
-ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle,
-                         double slack, double max_paired_share) {
+ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle, double slack,
+                         double max_paired_share) {
   Stopwatch clock;
   ConcaveZone z;
   z.slack = slack;
   z.keep.assign(mesh.facets.size(), 0);
   const Aabb3 box = bounding_box(mesh);
   if (mesh.facets.empty() || box.empty()) return z;
-  const FacetGeometry g = facet_geometry(mesh);
-  const Stars stars = vertex_stars(mesh);
-  const std::vector<std::uint8_t> irregular = irregular_vertices(mesh, stars, g);
-  const std::vector<std::int8_t> side = facet_sides(mesh, irregular);
-  const MeshFacts facts{mesh, stars, g, irregular, side};
   {
-    const std::vector<CentreBall> balls = centre_balls(facts, radius);
+    const std::vector<CentreBall> balls = concave_zone_detail::centre_balls(mesh, radius);
     z.elements = balls.size();
     auto zone = zone_balls(balls, box, radius, min_angle, slack,
                            std::size_t(max_paired_share * double(balls.size())));

@@ -82,7 +82,7 @@ KeptSubmesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone);
 // wide zone: bunny00 at 200 mm, ball 5, pairs 23 % of them and keeps 53 % of the facets; its
 // Loop x2 scan 12 % and 20 %), the search stops: keep holds every facet, and holds() is false
 // everywhere.
-ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle,
-                         double slack, double max_paired_share = 1);
+ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle, double slack,
+                         double max_paired_share = 1);
 
 }  // namespace ncpath

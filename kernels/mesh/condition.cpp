@@ -53,28 +53,10 @@ bool facet_near(const TriangleMesh& m, std::uint32_t f, const Plane& p) {
   return true;
 }
 
-// Facets around each vertex (CSR over facet corners).
-struct Around {
-  std::vector<std::uint32_t> start, ids;
-};
-
-Around facets_around(const TriangleMesh& m) {
-  Around a;
-  a.start.assign(m.vertices.size() + 1, 0);
-  for (const auto& f : m.facets)
-    for (std::uint32_t v : f) ++a.start[v + 1];
-  for (std::size_t v = 0; v < m.vertices.size(); ++v) a.start[v + 1] += a.start[v];
-  a.ids.resize(a.start.back());
-  std::vector<std::uint32_t> fill(a.start.begin(), a.start.end() - 1);
-  for (std::uint32_t f = 0; f < m.facets.size(); ++f)
-    for (std::uint32_t v : m.facets[f]) a.ids[fill[v]++] = f;
-  return a;
-}
-
 // Facets reached from `seed` through shared vertices that `accept` takes (seed first, then in
 // breadth-first order). `mark`/`stamp` record the visit; `free` says whether a facet may join.
 template <class Accept, class Free>
-void grow(std::uint32_t seed, const TriangleMesh& m, const Around& around,
+void grow(std::uint32_t seed, const TriangleMesh& m, const FacetsAround& around,
           std::vector<std::uint32_t>& mark, std::uint32_t stamp, Accept accept, Free free,
           std::vector<std::uint32_t>& out) {
   out.assign(1, seed);
@@ -139,7 +121,7 @@ Plane facet_plane(const TriangleMesh& m, std::uint32_t f, const Vec3& cross) {
   return fit.plane;
 }
 
-Clusters find_clusters(const TriangleMesh& m, const Around& around, const RangeRunner& ranges,
+Clusters find_clusters(const TriangleMesh& m, const FacetsAround& around, const RangeRunner& ranges,
                        ConditionStats& st) {
   const auto nf = std::uint32_t(m.facets.size());
   Clusters cl;
@@ -336,7 +318,7 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> vertical_extensions(
 ConditionedMesh condition_mesh(const TriangleMesh& mesh, const RangeRunner& ranges) {
   ConditionedMesh out;
   out.mesh = mesh;
-  const Around around = facets_around(mesh);
+  const FacetsAround around = facets_around(mesh);
   Clusters cl = find_clusters(mesh, around, ranges, out.stats);
   const auto facets = cluster_facets(mesh, cl);
   unify_planes(mesh, facets, cl);

@@ -28,4 +28,11 @@ struct Aabb3 {
 // Bounding box of the vertices referenced by facets (unreferenced vertices are ignored).
 Aabb3 bounding_box(const TriangleMesh& mesh);
 
+// The facets at each vertex (CSR over facet corners, in facet order): those of vertex v are
+// ids[start[v], start[v + 1]).
+struct FacetsAround {
+  std::vector<std::uint32_t> start, ids;
+};
+FacetsAround facets_around(const TriangleMesh& mesh);
+
 }  // namespace ncpath

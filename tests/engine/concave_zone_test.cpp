@@ -77,7 +77,8 @@ TriangleMesh groove_block(double slope, double w, double len, int n, double dept
   }
   const auto centre = std::uint32_t(m.vertices.size());
   m.vertices.emplace_back(0, 0.5 * len, -depth);
-  for (std::uint32_t k = 0; k < nr; ++k) m.facets.push_back({centre, base + (k + 1) % nr, base + k});
+  for (std::uint32_t k = 0; k < nr; ++k)
+    m.facets.push_back({centre, base + (k + 1) % nr, base + k});
   return m;
 }
 
@@ -87,7 +88,8 @@ TriangleMesh groove_block(double slope, double w, double len, int n, double dept
 void add_box(TriangleMesh& m, const Vec3& lo, const Vec3& hi, int levels) {
   TriangleMesh b;
   for (int k = 0; k < 8; ++k)
-    b.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(), k & 4 ? hi.z() : lo.z());
+    b.vertices.emplace_back(k & 1 ? hi.x() : lo.x(), k & 2 ? hi.y() : lo.y(),
+                            k & 4 ? hi.z() : lo.z());
   b.facets = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
               {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
   for (int k = 0; k < levels; ++k) b = subdivide_midpoint(b);
@@ -168,7 +170,10 @@ std::vector<Junction> junctions(const TriangleMesh& m, double R, const ConcaveZo
       m, ball_cutter(2 * R), p,
       [&](const ZLevelChunk& ch) {
         for (const ZLevelJunctionRecord& j : ch.junctions)
-          out.push_back({j.kind, j.position, j.b1, j.b2,
+          out.push_back({j.kind,
+                         j.position,
+                         j.b1,
+                         j.b2,
                          {j.element1.kind, j.element1.a, j.element1.b, j.element2.kind,
                           j.element2.a, j.element2.b}});
       },
@@ -231,8 +236,8 @@ TEST(ConcaveZone, HoldsEveryPencilBiContactOfTheVariants) {
 TEST(ConcaveZone, HoldsEveryPencilBiContactAtOtherRadiiAndAngles) {
   const TriangleMesh m = conditioned(test_meshes::load("fandisk"));
   for (const auto& [R, deg] : {std::pair{1.0, 10.0}, std::pair{6.0, 45.0}})
-    expect_zone_holds_bicontacts(m, R, deg * kDeg,
-                                 "fandisk R " + std::to_string(R) + " angle " + std::to_string(deg));
+    expect_zone_holds_bicontacts(
+        m, R, deg * kDeg, "fandisk R " + std::to_string(R) + " angle " + std::to_string(deg));
 }
 
 // Sliced to the zone, the z-levels give the whole mesh's junctions inside it (the same
