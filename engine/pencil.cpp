@@ -89,7 +89,8 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
                              double top, const ConcaveZone* zone, RunControl& control,
                              PencilStats& st) {
   Candidates z;
-  if (!(p.step_down > 0)) return z;
+  // An empty zone (a convex part) holds no bi-contact: nothing to slice.
+  if (!(p.step_down > 0) || (zone && zone->keep_facets == 0)) return z;
   Stopwatch clock;
   ZLevelOpParams zp;
   zp.step_down = p.step_down;
@@ -480,12 +481,15 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   std::array<double, 4> rect{};  // the scanned rectangle
   Candidates cand;
   if (sliced) {
+    rect = {box.lo.x() - p.margin, box.lo.y() - p.margin, box.hi.x() + p.margin,
+            box.hi.y() + p.margin};
     const KeptSubmesh kept = kept_submesh(mesh, zone);
-    const ScanElements part = build_scan_elements(kept.mesh, cutter.radius);
-    st.elements_s += part.build_s;
-    const ZoneSlice slice{zone, kept, {box.lo.x() - p.margin, box.lo.y() - p.margin,
-                                       box.hi.x() + p.margin, box.hi.y() + p.margin}};
-    cand = drive_plane_candidates(part, cutter, p, floor_z, &slice, control, st, rect);
+    if (!kept.mesh.facets.empty()) {  // an empty zone (a convex part) holds no bi-contact
+      const ScanElements part = build_scan_elements(kept.mesh, cutter.radius);
+      st.elements_s += part.build_s;
+      const ZoneSlice slice{zone, kept, rect};
+      cand = drive_plane_candidates(part, cutter, p, floor_z, &slice, control, st, rect);
+    }
   }
   // The whole part's elements: the tracing and the refinement follow creases to their ends.
   const ScanElements se = build_scan_elements(mesh, cutter.radius);

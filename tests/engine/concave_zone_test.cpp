@@ -267,6 +267,18 @@ TEST(ConcaveZone, SlicedZLevelsHaveTheWholeMeshsJunctionsInside) {
   }
 }
 
+// A convex part has an empty zone: nothing to slice, no pencil point, and no error.
+TEST(ConcaveZone, PencilOfAConvexPartSlicesNothing) {
+  const TriangleMesh m = sphere(30, 4);
+  PencilParams p;
+  p.zone_max_share = 1;
+  RunControl control;
+  const PencilResult r = run_pencil(m, ball_cutter(5), p, control);
+  EXPECT_EQ(r.stats.sliced_facets, 0u);
+  EXPECT_TRUE(r.points.empty());
+  EXPECT_TRUE(r.paths.empty());
+}
+
 // The pencil-cut gives the same paths and points whether its z-levels slice the zone or the
 // whole part (PencilParams::zone_max_share 1 and 0), to rounding.
 TEST(ConcaveZone, PencilIsTheSameSlicedOrWhole) {
