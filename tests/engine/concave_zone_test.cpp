@@ -220,6 +220,15 @@ TEST(ConcaveZone, HoldsEveryPencilBiContactOfRealMeshes) {
     expect_zone_holds_bicontacts(conditioned(test_meshes::load(name)), 2.5, 20 * kDeg, name);
 }
 
+// An open height field (both sides count, its rim's edges and vertices have unknown normals).
+TEST(ConcaveZone, HoldsEveryPencilBiContactOfAnOpenTerrain) {
+  for (unsigned seed : {3u, 4u}) {
+    std::mt19937_64 rng(seed);
+    expect_zone_holds_bicontacts(conditioned(test_meshes::terrain(rng, 30)), 2.5, 20 * kDeg,
+                                 "terrain seed " + std::to_string(seed));
+  }
+}
+
 TEST(ConcaveZone, HoldsEveryPencilBiContactOfTheVariants) {
   const TriangleMesh part = test_meshes::load("anchor_dense");
   for (const auto& [label, apply] : test::representation_variants()) {
