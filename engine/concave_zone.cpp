@@ -106,7 +106,7 @@ bool incident(const CentreBall& a, const CentreBall& b) {
 // Whether one ball can touch at a point of each element with normals min_angle apart.
 bool can_pair(const CentreBall& a, const CentreBall& b, double min_angle, double slack) {
   if ((a.at - b.at).norm() > a.reach + b.reach + slack || incident(a, b)) return false;
-  if (a.unbounded || b.unbounded) return true;
+  if (a.unbounded() || b.unbounded()) return true;
   const double needed = min_angle - a.half_angle - b.half_angle - tol::kConcaveZoneAngle;
   return needed <= 0 || a.axis.dot(b.axis) <= std::cos(needed);
 }
@@ -134,7 +134,7 @@ CellCones cell_cones(const CellEntries& entries, const std::vector<CentreBall>& 
     Vec3 sum = Vec3::Zero();
     for (std::uint32_t e = cc.begin[k]; e < cc.begin[k + 1]; ++e) {
       const CentreBall& b = balls[entries[e].second];
-      if (b.unbounded) return;
+      if (b.unbounded()) return;
       sum += b.axis;
     }
     if (!(sum.norm() > 0)) return;
@@ -163,7 +163,7 @@ FiledBalls file_for_pairing(const std::vector<CentreBall>& balls, const Aabb3& b
   double reach_sum = 0;
   std::size_t bounded = 0;
   for (const CentreBall& b : balls)
-    if (!b.unbounded) {
+    if (!b.unbounded()) {
       reach_sum += b.reach;
       ++bounded;
     }
@@ -187,7 +187,7 @@ bool pairs_with_filed(const CentreBall& a, const std::vector<CentreBall>& balls,
     if (run == f.cones.cell.end() || *run != c) return;
     const std::size_t k = std::size_t(run - f.cones.cell.begin());
     const double needed = min_angle - a.half_angle - f.cones.spread[k] - tol::kConcaveZoneAngle;
-    if (!a.unbounded && needed > 0 && a.axis.dot(f.cones.axis[k]) > std::cos(needed)) return;
+    if (!a.unbounded() && needed > 0 && a.axis.dot(f.cones.axis[k]) > std::cos(needed)) return;
     for (std::uint32_t e = f.cones.begin[k]; e < f.cones.begin[k + 1] && !hit; ++e)
       hit = can_pair(a, balls[f.entries[e].second], min_angle, slack);
   });
@@ -297,6 +297,28 @@ std::vector<std::uint8_t> kept_facets(const TriangleMesh& mesh,
   return keep;
 }
 
+// The facets marked in `keep` as a mesh of their own.
+KeptSubmesh kept_submesh(const TriangleMesh& mesh, const std::vector<std::uint8_t>& keep) {
+  KeptSubmesh sub;
+  std::vector<std::uint32_t> index(mesh.vertices.size(), kNone);
+  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
+    if (keep[f])
+      for (std::uint32_t v : mesh.facets[f]) index[v] = 0;
+  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = std::uint32_t(sub.vertex.size());
+      sub.vertex.push_back(v);
+      sub.mesh.vertices.push_back(mesh.vertices[v]);
+    }
+  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
+    if (keep[f]) {
+      const auto& t = mesh.facets[f];
+      sub.mesh.facets.push_back({index[t[0]], index[t[1]], index[t[2]]});
+      sub.facet.push_back(f);
+    }
+  return sub;
+}
+
 }  // namespace
 
 bool ConcaveZone::holds(const Vec3& c) const {
@@ -306,33 +328,11 @@ bool ConcaveZone::holds(const Vec3& c) const {
   });
 }
 
-KeptSubmesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone) {
-  KeptSubmesh sub;
-  std::vector<std::uint32_t> index(mesh.vertices.size(), kNone);
-  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
-    if (zone.keep[f])
-      for (std::uint32_t v : mesh.facets[f]) index[v] = 0;
-  for (std::uint32_t v = 0; v < mesh.vertices.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = std::uint32_t(sub.vertex.size());
-      sub.vertex.push_back(v);
-      sub.mesh.vertices.push_back(mesh.vertices[v]);
-    }
-  for (std::uint32_t f = 0; f < mesh.facets.size(); ++f)
-    if (zone.keep[f]) {
-      const auto& t = mesh.facets[f];
-      sub.mesh.facets.push_back({index[t[0]], index[t[1]], index[t[2]]});
-      sub.facet.push_back(f);
-    }
-  return sub;
-}
-
 ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle, double slack,
                          double max_paired_share) {
   Stopwatch clock;
   ConcaveZone z;
   z.slack = slack;
-  z.keep.assign(mesh.facets.size(), 0);
   const Aabb3 box = bounding_box(mesh);
   if (mesh.facets.empty() || box.empty()) return z;
   {
@@ -341,14 +341,15 @@ ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_ang
     auto zone = zone_balls(balls, box, radius, min_angle, slack,
                            std::size_t(max_paired_share * double(balls.size())));
     if (!zone) {
-      z.keep.assign(mesh.facets.size(), 1);
+      z.wide = true;
       z.keep_facets = mesh.facets.size();
       z.build_s = clock.seconds();
       return z;
     }
     z.balls = std::move(*zone);
   }
-  z.keep = kept_facets(mesh, z.balls, box, radius, slack);
+  z.kept = kept_submesh(mesh, kept_facets(mesh, z.balls, box, radius, slack));
+  z.keep_facets = z.kept.facet.size();
   Aabb3 grown = box;
   grown.lo.array() -= 2 * radius;
   grown.hi.array() += 2 * radius;
@@ -357,7 +358,6 @@ ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_ang
   z.lookup.h = grid.h;
   for (int a = 0; a < 3; ++a) z.lookup.n[a] = grid.n[a];
   z.lookup.entries = file_balls(grid, z.balls, slack);
-  for (std::uint8_t k : z.keep) z.keep_facets += k;
   z.build_s = clock.seconds();
   return z;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // The concave zone of a mesh for a ball of radius R (issue 17): a conservative screen for
 // where a ball clear of the mesh can touch it at two points whose contact normals are at
-// least min_angle apart (a pencil bi-contact), so that the pencil's z-levels slice only the
-// part of the mesh around those places.
+// least min_angle apart (a pencil bi-contact), so that the pencil's z-levels and its drive
+// planes looking for creases slice only the part of the mesh around those places.
 //
 // Why it is conservative. A ball clear of the mesh touching it at p1 and p2 with contact
 // normals n1, n2 (unit, contact to centre) has its centre at c = p1 + R n1 = p2 + R n2. The
@@ -23,10 +23,10 @@
 //
 // Two centre balls pair when they meet (within `slack`) and their cones can be min_angle
 // apart. The zone is the balls that pair: every bi-contact centre of at least min_angle lies
-// in one of them. `keep` is every facet within R of a zone ball and every facet above those
-// (a z-level slices the drop-cutter surface, whose highest element there may lie far above):
-// z-levels of the kept facets have, at every centre inside a zone ball, the junctions of the
-// whole mesh.
+// in one of them. Kept is every facet within R of a zone ball and every facet above those
+// (z-levels and drive planes slice the drop-cutter surface, whose highest element there may
+// lie far above): sliced, the kept facets have at every centre inside a zone ball the
+// junctions of the whole mesh.
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -36,14 +36,34 @@
 
 namespace ncpath {
 
+// The kept facets as a mesh of their own (their vertices and facets in mesh order): its offset
+// elements are the kept facets' whole neighbourhoods, the edges and vertices at the border
+// untrimmed by facets left out. `facet` and `vertex` name each one's index in the mesh.
+struct KeptSubmesh {
+  TriangleMesh mesh;
+  std::vector<std::uint32_t> facet, vertex;
+  // An element of the submesh (kind 0 facet, 1 edge, 2 vertex; engine/offset_elements_build.hpp
+  // ElementRef's fields) as the mesh's.
+  template <class Ref>
+  Ref in_mesh(Ref r) const {
+    if (r.kind == 0) r.a = facet[std::size_t(r.a)];
+    if (r.kind == 1 || r.kind == 2) r.a = vertex[std::size_t(r.a)];
+    if (r.kind == 1) r.b = vertex[std::size_t(r.b)];
+    return r;
+  }
+};
+
 struct ConcaveZone {
   struct Ball {
     Vec3 at;
     double reach = 0;  // mm
   };
-  std::vector<Ball> balls;         // where bi-contact centres can be
-  std::vector<std::uint8_t> keep;  // per mesh facet: 1 when the z-levels must slice it
-  std::uint64_t elements = 0, keep_facets = 0;
+  std::vector<Ball> balls;  // where bi-contact centres can be
+  // The search stopped: the zone is wide (see concave_zone); nothing is kept, holds() is false.
+  bool wide = false;
+  KeptSubmesh kept;               // empty when wide or when no ball pairs (a convex part)
+  std::uint64_t elements = 0;     // centre balls looked at
+  std::uint64_t keep_facets = 0;  // kept.facet.size(), or every facet when wide
   double build_s = 0;
 
   // Whether a ball centre at c lies in a zone ball (grown by `slack`).
@@ -59,29 +79,10 @@ struct ConcaveZone {
   double slack = 0;
 };
 
-// The kept facets as a mesh of their own (their vertices and facets in mesh order): its offset
-// elements are the kept facets' whole neighbourhoods, the edges and vertices at the border
-// untrimmed by facets left out. `facet` and `vertex` name each one's index in `mesh`.
-struct KeptSubmesh {
-  TriangleMesh mesh;
-  std::vector<std::uint32_t> facet, vertex;
-  // An element of the submesh (kind 0 facet, 1 edge, 2 vertex; engine/offset_elements_build.hpp
-  // ElementRef's fields) as the mesh's.
-  template <class Ref>
-  Ref in_mesh(Ref r) const {
-    if (r.kind == 0) r.a = facet[std::size_t(r.a)];
-    if (r.kind == 1 || r.kind == 2) r.a = vertex[std::size_t(r.a)];
-    if (r.kind == 1) r.b = vertex[std::size_t(r.b)];
-    return r;
-  }
-};
-KeptSubmesh kept_submesh(const TriangleMesh& mesh, const ConcaveZone& zone);
-
 // `slack` (mm) widens the tests: contacts within it of the mesh count (the pencil's tolerance
 // for a contact on the part). When more than `max_paired_share` of the centre balls pair (a
 // wide zone: bunny00 at 200 mm, ball 5, pairs 23 % of them and keeps 53 % of the facets; its
-// Loop x2 scan 12 % and 20 %), the search stops: keep holds every facet, and holds() is false
-// everywhere.
+// Loop x2 scan 12 % and 20 %), the search stops and the zone is `wide`.
 ConcaveZone concave_zone(const TriangleMesh& mesh, double radius, double min_angle, double slack,
                          double max_paired_share = 1);
 

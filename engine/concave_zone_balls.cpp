@@ -126,7 +126,7 @@ struct BallSink {
   void cone(const Vec3& centre, double size, const Vec3& axis, double half,
             std::array<std::uint32_t, 3> verts) {
     if (std::asin(std::clamp(-axis.z(), -1.0, 1.0)) >= half + tol::kConcaveZoneAngle) return;
-    add({centre + R * axis, size + 2 * R * std::sin(0.5 * half), axis, half, verts, false});
+    add({centre + R * axis, size + 2 * R * std::sin(0.5 * half), axis, half, verts});
   }
 };
 

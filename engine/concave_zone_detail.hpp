@@ -17,10 +17,10 @@ constexpr std::uint32_t kNone = ~std::uint32_t(0);
 struct CentreBall {
   Vec3 at;
   double reach = 0;
-  Vec3 axis = Vec3::UnitZ();  // the side's normal cone
-  double half_angle = std::numbers::pi;
+  Vec3 axis = Vec3::UnitZ();                                // the side's normal cone
+  double half_angle = std::numbers::pi;                     // pi: unknown (any normal)
   std::array<std::uint32_t, 3> verts{kNone, kNone, kNone};  // the element's mesh vertices
-  bool unbounded = true;
+  bool unbounded() const { return half_angle >= std::numbers::pi; }
 };
 
 // Every element's balls, in facet order (its interior, then its edges), then vertex order.

@@ -90,7 +90,7 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
                              PencilStats& st) {
   Candidates z;
   // An empty zone (a convex part) holds no bi-contact: nothing to slice.
-  if (!(p.step_down > 0) || (zone && zone->keep_facets == 0)) return z;
+  if (!(p.step_down > 0) || (zone && zone->kept.facet.empty())) return z;
   Stopwatch clock;
   ZLevelOpParams zp;
   zp.step_down = p.step_down;
@@ -124,13 +124,12 @@ Candidates zlevel_candidates(const TriangleMesh& mesh, const Cutter& cutter, con
 // whole part (its rectangle).
 struct ZoneSlice {
   const ConcaveZone& zone;
-  const KeptSubmesh& part;
   std::array<double, 4> rect;
 };
 
 // A junction's element on the sliced part as the whole mesh's.
 ElementRef whole_mesh_ref(const ElementRef& r, const ZoneSlice* slice) {
-  return slice ? slice->part.in_mesh(r) : r;
+  return slice ? slice->zone.kept.in_mesh(r) : r;
 }
 
 // The sharp-concave junctions of both drive-plane families (not the floor's: its junctions
@@ -472,7 +471,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const ConcaveZone zone =
       concave_zone(mesh, cutter.radius, min_angle, p.tolerance, p.zone_max_share);
   st.zone_s = zone.build_s;
-  const bool sliced = zone.keep_facets < mesh.facets.size();
+  const bool sliced = !zone.wide;
   st.sliced_facets = zone.keep_facets;
   // Candidates from z-levels first (appended after the drive planes' below): their elements
   // are freed before the drive planes' are built, so the two never take memory at once.
@@ -483,11 +482,10 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   if (sliced) {
     rect = {box.lo.x() - p.margin, box.lo.y() - p.margin, box.hi.x() + p.margin,
             box.hi.y() + p.margin};
-    const KeptSubmesh kept = kept_submesh(mesh, zone);
-    if (!kept.mesh.facets.empty()) {  // an empty zone (a convex part) holds no bi-contact
-      const ScanElements part = build_scan_elements(kept.mesh, cutter.radius);
+    if (!zone.kept.facet.empty()) {  // an empty zone (a convex part) holds no bi-contact
+      const ScanElements part = build_scan_elements(zone.kept.mesh, cutter.radius);
       st.elements_s += part.build_s;
-      const ZoneSlice slice{zone, kept, rect};
+      const ZoneSlice slice{zone, rect};
       cand = drive_plane_candidates(part, cutter, p, floor_z, &slice, control, st, rect);
     }
   }

@@ -82,12 +82,11 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   const TriangleMesh& part = p.condition ? cond.mesh : mesh;
   // Sliced for the ball grown by the largest move (same centres: kernel tip = z - grow).
   const double grow = st.condition.max_move, R = cutter.radius + grow;
-  const KeptSubmesh zone_part = p.zone ? kept_submesh(part, *p.zone) : KeptSubmesh{};
-  const OffsetElements el =
-      build_offset_elements_parallel(p.zone ? zone_part.mesh : part, R, false, Coplanar::kVertical);
+  const TriangleMesh& sliced = p.zone ? p.zone->kept.mesh : part;
+  const OffsetElements el = build_offset_elements_parallel(sliced, R, false, Coplanar::kVertical);
   auto ref = [&](std::uint32_t id) {
     const ElementRef r = element_ref(el, id);
-    return p.zone ? zone_part.in_mesh(r) : r;
+    return p.zone ? p.zone->kept.in_mesh(r) : r;
   };
   if (el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
   st.facets = el.facet_count();

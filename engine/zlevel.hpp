@@ -50,9 +50,10 @@ struct ZLevelOpParams {
   // for the ball grown by the largest vertex move, at the same centre heights: the contours
   // keep the tool clear of the part as given. false: the mesh is conditioned already (pencil).
   bool condition = true;
-  // Optional (pencil, fillet): slice only the zone's kept facets (and the edges between their
-  // vertices) and report only the junctions whose ball centre the zone holds: those are the
-  // whole mesh's there (engine/concave_zone.hpp). The contours are then partial.
+  // Optional (pencil, fillet), a zone of the mesh as sliced (conditioned or not, as above):
+  // slice only its kept facets (zone->kept) and report only the junctions whose ball centre
+  // it holds: those are the whole mesh's there (engine/concave_zone.hpp). The contours are
+  // then partial.
   const ConcaveZone* zone = nullptr;
 };
 
