@@ -59,7 +59,6 @@ void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
 struct LevelOut {
   ZLevelChunk chunk;
   std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
-  std::uint64_t unchanged = 0;
   std::uint64_t kinds[3] = {0, 0, 0};
 };
 
@@ -100,7 +99,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   kernel.boxes = &boxes;
   const std::size_t nfe = el.facet_count() + el.edge_count();
   const std::vector<double>& reach = boxes.reach;
-  // Unreachable edges are left out: the kernel skips them (ZLevelParams::skip_unreachable),
+  // Unreachable edges are left out: the kernel skips them (OffsetElements::edge_reachable),
   // and their end vertices come from the reachable edges there (a vertex is reachable only
   // through one of its edges, which reaches at least as high).
   std::vector<std::uint32_t> by_top;
@@ -148,14 +147,12 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     ZLevelParams kp = kernel;
     kp.workspace = &workspaces.local();
     kp.inside = &inside;
-    kp.candidates_filtered = cand == &filtered;
     const ZLevelResult r =
         zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), zk, kp);
     if (i + 1 == chunk_end) next_inside = zlevel_inside(r, 0.5 * el.radius);
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
     out.repaired_links = r.stats.repaired_links;
-    out.unchanged = r.stats.unchanged;
     ZLevelChunk& ch = out.chunk;
     std::vector<Vec2> pts;
     for (std::size_t c = 0; c < r.contours.size(); ++c) {
@@ -272,7 +269,6 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       st.candidates += o.candidates;
       st.open_chains += o.open_chains;
       st.repaired_links += o.repaired_links;
-      st.unchanged_levels += o.unchanged;
       st.points += o.points;
     }
   };

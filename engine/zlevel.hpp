@@ -13,9 +13,7 @@
 // (zlevel_filter_deep, once per chunk, the ones left out before staying out), and the kernel
 // drops the regions and certifies the curve pieces lying deep inside it. On a part with
 // steep walls most elements above a level are such: anchor_large at 1 mm steps, 20.8 s ->
-// about 7 s (docs/performance.md). Where every element reaching a level lies above the
-// region's level or inside it (under an overhang), the kernel copies the region's contours
-// (ZLevelOpStats::unchanged_levels; 22 of anchor_large's 171 levels).
+// about 7 s (docs/performance.md).
 //
 // Polylines: lines exactly; an arc (circle or ellipse, centre c, axes r1 a and r2 a_perp) by
 // the polygon circumscribed to it in its affine frame: vertices at t0 + (j - 1/2) dt scaled by
@@ -90,9 +88,6 @@ struct ZLevelOpStats {
   std::uint64_t candidates = 0;   // summed over levels
   std::uint64_t open_chains = 0;  // contours the kernel could not close (0 expected)
   std::uint64_t repaired_links = 0;  // contour ends linked across a gap <= tol::kZLevelRepair
-  // Levels whose contours are those of the known inside region's level (ZLevelStats::unchanged:
-  // every element there lies above that level or deep inside its contours).
-  std::uint64_t unchanged_levels = 0;
   std::uint64_t facets = 0, edges = 0, vertices = 0;
   double top_z = 0, bottom_z = 0;  // the part's z range, mm
   ConditionStats condition;        // the input conditioning (zeros when not asked)

@@ -98,7 +98,6 @@ void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& sta
       {"condition_planes", i64(st.condition.planes), ""},
       {"condition_moved_vertices", i64(st.condition.moved_vertices), ""},
       {"condition_max_move", st.condition.max_move, "mm"},
-      {"unchanged_levels", i64(st.unchanged_levels), ""},
       {"cut_points", i64(st.points), ""},
       {"elements_s", st.elements_s, "s"},
   };

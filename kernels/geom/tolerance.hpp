@@ -335,6 +335,8 @@ inline constexpr double kZLevelInsideRepaired = 5e-4;
 // mm. Root isolation on conic arcs stops at sub-arcs shorter than this: two crossings closer
 // than this may both be missed (the curves then touch within rounding).
 inline constexpr double kZLevelRootLength = 1e-10;
+// mm. A crossing isolated on a monotone sub-arc is refined (regula falsi) to this length.
+inline constexpr double kZLevelRootPrecision = 1e-13;
 
 // mm. An elliptic contour arc within this of its chord is output as a line (very flat edges
 // give ellipses with huge semi-axes whose centre form loses precision).
@@ -343,6 +345,46 @@ inline constexpr double kZLevelFlatArc = 1e-10;
 // Dimensionless (rise over horizontal length). An edge flatter than this is horizontal for
 // z-level contours: the sides of its capsule are straight.
 inline constexpr double kZLevelFlatSlope = 1e-12;
+
+// mm. Slack on the z-level kernel's tests that only decide whether work is done, never the
+// answer: curve boxes that may overlap (pairs to intersect), crossings just beyond a curve's
+// end (the curve that continues it may miss them by rounding; a duplicate split is
+// harmless), a point's parameter range on a candidate curve, the cutoff of the deepest-first
+// region search. Values at a part's scale carry ~1e-13 mm of rounding.
+inline constexpr double kZLevelSlack = 1e-9;
+
+// mm. A tangent joint (where a clip line or capsule side ends tangent to the next element's
+// curve) is moved onto the target region's candidate curve passing within this of it: the
+// joint is computed from the line's element, its place on the curve to ~sqrt(rounding).
+inline constexpr double kZLevelJointSnap = 1e-6;
+
+// mm. The known inside region's polygon edge between two line segments of a contour is exact
+// (lies on the contour) when their ends agree within this; a curve piece's end within
+// kZLevelOnExactEdge of such an edge lies on the known boundary (less than
+// kZLevelInsideMargin deep), so no region inside the known region holds it.
+inline constexpr double kZLevelSharedEnd = 1e-12;
+inline constexpr double kZLevelOnExactEdge = 1e-10;
+
+// mm. A reference point of the known inside region's grid lies at least this far from every
+// polygon edge in its cell, so that parity rays from it never pass an edge within rounding.
+inline constexpr double kZLevelRefClearance = 1e-7;
+
+// Dimensionless (cross product of unit directions). Lines closer than this to parallel have
+// no crossing of their own (their meeting is found as coincidence or a T-junction); two kept
+// pieces of one element's line continue each other (merged into one segment) when their
+// tangents are within kZLevelSameDirection.
+inline constexpr double kZLevelParallel = 1e-15;
+inline constexpr double kZLevelSameDirection = 1e-12;
+
+// Dimensionless. Rounding of the conic implicit function F = Q_D(P_C(s)) relative to the
+// squared scale of D (its largest diameter): root isolation keeps intervals whose bound is
+// within this of zero. Newton steps stop below kZLevelStep relative to the point's size.
+inline constexpr double kZLevelImplicitRounding = 1e-12;
+inline constexpr double kZLevelStep = 1e-15;
+
+// Dimensionless. The pruning grid's cell is at least this times (1 + the candidates' xy
+// extent in mm), so that a degenerate extent never makes an unbounded grid.
+inline constexpr double kZLevelMinCell = 1e-9;
 
 // ---- Clean-up paths (kernels/cleanup/*) ----
 

@@ -1,7 +1,7 @@
 // Z-level contours (kernels/scan/zlevel.hpp): the top-level flow of zlevel_contours. Pruning
 // grid, regions and candidate curves, active (uncovered) curves, coincident trimming, splits
 // at tangent joints and crossings. Cover and piece classification: zlevel_cover.cpp; linking
-// and output: zlevel_loops.cpp; levels copied from the known inside region: zlevel_known.cpp.
+// and output: zlevel_loops.cpp; the known inside region: zlevel_inside.cpp.
 #include "kernels/scan/zlevel.hpp"
 
 #include <algorithm>
@@ -155,7 +155,7 @@ using Workspace = ZLevelWorkspace::Buffers;
 // vertex spacing, the regions of the facets and edges large enough to hold cells beyond their
 // vertices' discs, and the cells inside the known inside region (a higher level's contours).
 void mark_interior_cells(const OffsetElements& el, const Workspace& ws, const Level& lv,
-                         bool reach, const ZLevelInside* inside, Grid& grid, ZLevelStats& st) {
+                         const ZLevelInside* inside, Grid& grid, ZLevelStats& st) {
   const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
   const auto& pbits = ws.pbits;
   const auto& cand = ws.cand;
@@ -183,7 +183,7 @@ void mark_interior_cells(const OffsetElements& el, const Workspace& ws, const Le
     const double big = id < nf ? grid.cell : 2 * lv.R + 2 * grid.cell;
     if (b[2] - b[0] < big && b[3] - b[1] < big) continue;
     if (id < nf && (b[2] - b[0] < grid.cell || b[3] - b[1] < grid.cell)) continue;
-    if (build_region(el, id, lv, reach, g)) mark_interior(g, lv, grid);
+    if (build_region(el, id, lv, g)) mark_interior(g, lv, grid);
   }
   if (inside)
     for (int j = 0; j < grid.ny; ++j)
@@ -233,7 +233,7 @@ void remove_cuts(std::vector<Cut>& cuts, std::vector<Curve>& act, std::vector<Cu
 }
 
 bool boxes_overlap(const double* a, const double* b) {
-  const double s = 1e-9;
+  const double s = tol::kZLevelSlack;
   return a[0] <= b[2] + s && b[0] <= a[2] + s && a[1] <= b[3] + s && b[1] <= a[3] + s;
 }
 
@@ -327,14 +327,13 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   });
   if (!(ext[0] <= ext[2])) return result;
   const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
-  if (inside && contours_from_known(el, cand, *inside, lv, tip_z, params, result)) return result;
   Grid grid;
   grid.cell = params.cell > 0 ? params.cell : 0.5 * lv.R;
   const double wx = ext[2] - ext[0], wy = ext[3] - ext[1];
   const double max_cells = 4e6;
   if ((wx / grid.cell + 1) * (wy / grid.cell + 1) > max_cells)
     grid.cell = std::sqrt((wx + grid.cell) * (wy + grid.cell) / max_cells);
-  grid.cell = std::max(grid.cell, 1e-9 * (1 + std::max(wx, wy)));
+  grid.cell = std::max(grid.cell, tol::kZLevelMinCell * (1 + std::max(wx, wy)));
   grid.x0 = ext[0];
   grid.y0 = ext[1];
   grid.nx = std::max(1, int(wx / grid.cell) + 1);
@@ -342,7 +341,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   grid.interior.assign(std::size_t(grid.nx) * grid.ny, 0);
   st.cells = grid.interior.size();
 
-  mark_interior_cells(el, ws, lv, params.skip_unreachable, inside, grid, st);
+  mark_interior_cells(el, ws, lv, inside, grid, st);
   // A region deep inside it (tol::kZLevelInsideDepth) is dropped; its shape is tested through
   // a hull that holds it: the projected offset triangle, the capsule of radius R around the
   // edge's shadow, the disc.
@@ -360,7 +359,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     g.known_inside = low >= zc_inside;
   };
   auto deep_inside = [&](const Region& g) {
-    if (!inside || (params.candidates_filtered && g.kind != RegionKind::kVertex)) return false;
+    if (!inside) return false;
     const bool deep = region_in_known(el, *inside, g, tol::kZLevelInsideDepth);
     st.inside_regions += deep;
     return deep;
@@ -402,8 +401,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       mark_vertex_point(ev[1]);
     }
     Region g;
-    if (build_region(el, id, lv, params.skip_unreachable, g) && grid.any_open(g.box) &&
-        !deep_inside(g)) {
+    if (build_region(el, id, lv, g) && grid.any_open(g.box) && !deep_inside(g)) {
       mark_known(g);
       regions.push_back(g);
     }
@@ -412,8 +410,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     for (std::uint64_t m = vbits[w]; m; m &= m - 1) {
       const auto v = std::uint32_t(w * 64 + std::countr_zero(m));
       Region g;
-      if (build_region(el, el.vertex_id(v), lv, params.skip_unreachable, g) &&
-          grid.any_open(g.box) && !deep_inside(g)) {
+      if (build_region(el, el.vertex_id(v), lv, g) && grid.any_open(g.box) && !deep_inside(g)) {
         mark_known(g);
         regions.push_back(g);
       }
@@ -552,7 +549,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   std::vector<KeptPiece> kept;
   classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, params, st, kept);
   st.kept = kept.size();
-  build_loops(el, lv, regions, act, kept, params.link, result);
+  build_loops(el, lv, regions, act, kept, result);
   return result;
 }
 

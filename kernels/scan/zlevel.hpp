@@ -32,27 +32,46 @@
 // (on the circle kept in the vertex's place when stacked vertices' circles coincide). A line
 // ending within 2 tol::kZLevelOnBoundary of another line splits that one too (a T-junction).
 //
-// Method. Elements are pruned with a uniform grid: cells lying (with margin) inside one
-// region (mostly the discs of the mesh points) are interior to U and no boundary passes
-// through them; regions and curves that reach no other cell are never built. Each remaining
-// curve is cut into sub-pieces of about a cell, a sub-piece that is not certified halved
-// twice; those lying in interior cells or strictly inside one other region (searched deepest
-// at the cell's centre first) are dropped, and the curve is trimmed to the rest (crossings
-// there cannot be on the boundary); where curves coincide (the shadows of a wall's stacked edges
-// and vertices; lines by the distance of their ends, their directions differ by rounding),
-// only the lowest element id's is kept. The trimmed curves are split at their exact
-// crossings (closed form when a line is involved or for two circles; certified
-// branch-and-bound root isolation on the arc parameter otherwise), each piece is kept when
-// it lies strictly inside no other region, and kept pieces are linked end to end
-// (tol::kZLevelLink) into loops. A piece lies on one side of each region's boundary: its
-// midpoint decides; within tol::kZLevelOnBoundary of the boundary its quarter points do (a
-// piece leaving a tangent joint, where a flat edge's ellipse has a radius of curvature up to
-// R / sin^2(slope)), then the orientation of a line crossing at its ends, where that line
-// runs beside the piece (clip lines of nearly coplanar facets crossing at a grazing angle);
-// else pieces with regions on both sides are dropped; a piece leaving a tangent joint with
-// the region's curve (a short one stays within the tolerance) lies inside where it turns more
-// towards its region than that curve; otherwise (coincident curves, grazing crossings) the
-// lower element id keeps a shared piece.
+// Method: one pipeline per level (zlevel_contours, zlevel.cpp), each step dropping only what
+// cannot lie on the boundary of U, so that the last steps see few curves:
+//  1. Candidates: the given elements whose region can reach the level (ZLevelElementBoxes);
+//     vertices come from the candidate edges.
+//  2. Pruning grid (cells of about R / 2): a cell lying (by tol::kZLevelCellMargin) inside
+//     one region, mostly the discs of the mesh points, is interior to U; no boundary passes
+//     through it. Regions and curves that reach no other cell are never built.
+//  3. Regions and their candidate curves, with the tangent joints where the curves end
+//     (zlevel_regions.cpp).
+//  4. Cover (zlevel_cover.cpp uncovered_runs): each curve is cut into sub-pieces of about a
+//     cell, a sub-piece that is not certified halved twice; those lying in interior cells or
+//     strictly inside one other region (searched deepest at the cell's centre first) are
+//     dropped, and the curve is trimmed to the rest: crossings there cannot be on the boundary.
+//  5. Coincident curves (the shadows of a wall's stacked edges and vertices; lines by the
+//     distance of their ends, their directions differ by rounding): only the lowest element
+//     id's is kept, so that k of them do not make k^2 pieces.
+//  6. Splits (zlevel_intersect.cpp): the trimmed curves are split at their exact crossings
+//     (closed form when a line is involved or for two circles; certified branch-and-bound
+//     root isolation on the arc parameter otherwise) and at the tangent joints.
+//  7. Classification (zlevel_cover.cpp classify_pieces): a piece is kept when it lies
+//     strictly inside no other region. A piece lies on one side of each region's boundary:
+//     its midpoint decides; within tol::kZLevelOnBoundary of the boundary its quarter points
+//     do (a piece leaving a tangent joint, where a flat edge's ellipse has a radius of
+//     curvature up to R / sin^2(slope)), then the orientation of a line crossing at its ends,
+//     where that line runs beside the piece (clip lines of nearly coplanar facets crossing at
+//     a grazing angle); else pieces with regions on both sides are dropped; a piece leaving a
+//     tangent joint with the region's curve (a short one stays within the tolerance) lies
+//     inside where it turns more towards its region than that curve; otherwise (coincident
+//     curves, grazing crossings) the lower element id keeps a shared piece.
+//  8. Loops (zlevel_loops.cpp): kept pieces are linked end to end (tol::kZLevelLink), runs of
+//     one element's curve merged, junctions classified; an end left without a successor is
+//     linked to the nearest free start within tol::kZLevelRepair (counted: repaired_links),
+//     chains still open are counted (open_chains) and left out.
+// The known inside region of a higher level (ZLevelInside below, optional) is one more
+// certificate of "inside U" at steps 2 (its cells are interior), 3 (regions lying deep in it
+// are dropped before their curves are built; callers may leave such elements out of the
+// candidates, zlevel_filter_deep) and 4 (sub-pieces in it are covered). It never changes the
+// answer; it makes a level's work scale with the elements near its boundary rather than with
+// all those above it.
+// Every tolerance is named in kernels/geom/tolerance.hpp (the kZLevel* block).
 //
 // Contacts. On a capsule side or vertex circle where the element lies above the level
 // (ContourSeg::shadow), E jumps there (a wall or an overhang): the ball at the level does not
@@ -134,7 +153,6 @@ struct ZLevelStats {
   std::uint64_t convex_junctions = 0;  // convex corners (only at floors exactly at the level)
   std::uint64_t inside_regions = 0;    // regions dropped deep inside ZLevelParams::inside
   std::uint64_t inside_cells = 0;      // interior cells found inside ZLevelParams::inside
-  std::uint64_t unchanged = 0;  // 1: U is the known inside region's (its contours copied)
 };
 
 struct ZLevelResult {
@@ -172,11 +190,6 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el);
 // inside (zlevel_filter_deep, run against the region of a higher level: a region only grows
 // going down, and the polygons lie within a quarter of the depth of the contours).
 // The contours are the same as without it (up to rounding where they are split).
-// When every candidate region that is not empty lies wholly above the region's level (the
-// same region there, inside it) or inside it, U is the region's U: below an overhang or the
-// top of a wall. The kernel then copies the region's contours (`contours`) with the
-// junctions moved to its level (ZLevelStats::unchanged); their elements all lie above both
-// levels, so their segments are shadows at both and their contact vectors horizontal.
 struct ZLevelInside {
   double x0 = 0, y0 = 0, cell = 1;
   int nx = 0, ny = 0;
@@ -196,8 +209,6 @@ struct ZLevelInside {
   // kernel does not try them there.
   double tip_z = 0;
   std::vector<std::uint8_t> exact;
-  // The level's contours, when they have no repaired links (else empty: not copied).
-  std::vector<ZContour> contours;
   bool empty() const { return nx == 0; }
 };
 
@@ -231,17 +242,11 @@ class ZLevelWorkspace {
 
 struct ZLevelParams {
   double cell = 0;  // pruning grid cell, mm; 0: R / 2 (raised if the grid would be huge)
-  bool skip_unreachable = true;  // use OffsetElements' edge/vertex reachability flags
-  double on_boundary = tol::kZLevelOnBoundary;
-  double link = tol::kZLevelLink;
   // Optional: zlevel_element_boxes(el) of the same elements (the result is the same).
   const ZLevelElementBoxes* boxes = nullptr;
   // Optional: zlevel_inside(r) of the result r of a higher level (the result is the same, up
   // to rounding where curves are split).
   const ZLevelInside* inside = nullptr;
-  // The facet and edge candidates were kept by zlevel_filter_deep against `inside` (the same
-  // test the kernel would make again): only vertices are tested.
-  bool candidates_filtered = false;
   // Optional: buffers to reuse (the caller's, e.g. one per thread); null: the call's own.
   ZLevelWorkspace* workspace = nullptr;
 };

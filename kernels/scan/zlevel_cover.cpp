@@ -92,10 +92,11 @@ void uncovered_runs(const Curve& c, const Grid& grid, const CellLists& cells,
     double b[4];
     points_box(h, nh, b);
     if (!grid.any_open(b)) return true;
-    // An end on the known region's boundary (within 1e-10 mm of an exact edge, the contour to
-    // ~1e-11) lies less than m deep in it, so neither it nor a region inside it holds the hull.
-    const bool on_known = inside && (on_exact_edge(*inside, h[0], 1e-10) ||
-                                     on_exact_edge(*inside, h[1], 1e-10));
+    // An end on the known region's boundary (within tol::kZLevelOnExactEdge of an exact edge,
+    // the contour to ~1e-11 mm) lies less than m deep in it, so neither it nor a region inside
+    // it holds the hull.
+    const bool on_known = inside && (on_exact_edge(*inside, h[0], tol::kZLevelOnExactEdge) ||
+                                     on_exact_edge(*inside, h[1], tol::kZLevelOnExactEdge));
     if (inside && !on_known && inside_contains(*inside, h, nh, 0, inside->margin)) return true;
     auto in_region = [&](std::uint32_t gi) {
       const Box4f& gb = rbox[gi];
@@ -223,7 +224,7 @@ void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& r
       const std::uint32_t gi = region_of_element(target);
       if (gi == kNone) continue;
       best = kNone;
-      best_d = 1e-6;
+      best_d = tol::kZLevelJointSnap;
       nearest(gi, j.p);
       const Region& g = regions[gi];
       if (best == kNone && g.kind == RegionKind::kVertex) {
@@ -247,13 +248,13 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
                      const std::vector<Box4f>& rbox, const Grid& grid,
                      const CellLists& region_cells, const Level& lv, const ZLevelParams& params,
                      ZLevelStats& st, std::vector<KeptPiece>& kept) {
-  // G's candidate curve passing nearest to m, within params.on_boundary (kNone if none).
+  // G's candidate curve passing nearest to m, within tol::kZLevelOnBoundary (kNone if none).
   auto emits_at = [&](const Region& G, const Vec2& m) {
     std::uint32_t best = kNone;
-    double best_d = params.on_boundary;
+    double best_d = tol::kZLevelOnBoundary;
     for (std::uint32_t c = G.curve_begin; c < G.curve_end; ++c) {
       const double s = curve_param(curves[c], m);
-      if (!(s >= -1e-9 && s <= curves[c].len + 1e-9)) continue;
+      if (!(s >= -tol::kZLevelSlack && s <= curves[c].len + tol::kZLevelSlack)) continue;
       const double d = (curve_point(curves[c], std::clamp(s, 0.0, curves[c].len)) - m).norm();
       if (d <= best_d) {
         best_d = d;
@@ -290,7 +291,7 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
   };
 
   // Pieces between consecutive splits; keep those on the boundary of U.
-  const double on = params.on_boundary;
+  const double on = tol::kZLevelOnBoundary;
   for (std::size_t k = 0; k + 1 < splits.size(); ++k) {
     const Split &s0 = splits[k], &s1 = splits[k + 1];
     if (s0.curve != s1.curve || !(s1.s > s0.s)) continue;

@@ -11,7 +11,6 @@
 //   zlevel_loops.cpp      linking kept pieces into loops, junctions, canonical output
 //   zlevel_inside.cpp     the known inside region of a higher level (ZLevelInside): polygon
 //                         index, containment and depth tests, the deep-element filter
-//   zlevel_known.cpp      a level whose U is the known region's takes its contours
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/geom/tolerance.hpp"
 #include "kernels/geom/vec.hpp"
 #include "kernels/mesh/offset_elements.hpp"
 #include "kernels/scan/zlevel.hpp"
@@ -60,9 +60,8 @@ struct Region {
 };
 
 // Builds the region of element `id`; false when it is empty, has no area, or is not needed
-// (vertical facet, vertical edge, unreachable element when `reach` is set).
-bool build_region(const OffsetElements& el, std::uint32_t id, const Level& lv, bool reach,
-                  Region& out);
+// (vertical facet, vertical edge, edge or vertex unreachable by OffsetElements' flags).
+bool build_region(const OffsetElements& el, std::uint32_t id, const Level& lv, Region& out);
 
 // Signed membership value at x: < 0 inside, > 0 outside, 0 on the boundary. Exact distance
 // for facets and vertex discs; for capsules (g - R^2) / (2 R) with g the squared distance
@@ -221,7 +220,7 @@ struct CellLists {
 // for facets and discs (1-Lipschitz), and (s^2 - R^2) / (2 R) for capsules with s a
 // distance, so it grows from c by at most d + d^2 / (2 R) (plus rounding).
 inline double depth_cutoff(double d, double R, double above) {
-  return above + d * (1 + 1e-9) + d * d / (2 * R) + 1e-9;
+  return above + d * (1 + tol::kZLevelSlack) + d * d / (2 * R) + tol::kZLevelSlack;
 }
 
 // Box (x0, y0, x1, y1) of the points p[0, n).
@@ -322,26 +321,15 @@ double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double
 
 // ---- loops (zlevel_loops.cpp) ----
 
-// Links the pieces into closed loops (ends within `link`), merges runs of one element's
+// Links the pieces into closed loops (ends within tol::kZLevelLink), merges runs of one element's
 // curve, classifies junctions and writes the canonical contours into out. Chains that do not
 // close are counted (out.stats.open_chains) and left out.
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
-                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
-                 ZLevelResult& out);
+                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, ZLevelResult& out);
 
 // Signed area enclosed by a loop of segments, mm^2 (exact for the typed segments).
 double contour_area(const std::vector<ContourSeg>& segs);
 // In output order: by the first segment's start (x, then y), then its element.
 void sort_contours(std::vector<ZContour>& contours);
-
-// ---- copies (zlevel_known.cpp, ZLevelInside in zlevel.hpp) ----
-
-// The level's contours when the known inside region q decides them (ZLevelInside): copied
-// where no candidate region (facets, edges and their end vertices, vertices of `cand`) can
-// make U differ from q's U (ZLevelStats::unchanged). False: the level is to be computed in
-// full (result unchanged).
-bool contours_from_known(const OffsetElements& el, const std::vector<std::uint32_t>& cand,
-                         const ZLevelInside& q, const Level& lv, double tip_z,
-                         const ZLevelParams& params, ZLevelResult& result);
 
 }  // namespace ncpath::zlevel_detail

@@ -14,10 +14,6 @@ using namespace zlevel_detail;
 
 namespace {
 
-// A reference point must be this far from every edge in its cell (mm), so that the parity
-// rays and segments from it never pass through an edge within rounding.
-constexpr double kRefClearance = 1e-7;
-
 double orient(const Vec2& a, const Vec2& b, const Vec2& c) { return cross2(b - a, c - a); }
 
 double seg_seg(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
@@ -151,7 +147,8 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
       discretise(s, 0.25 * tol::kZLevelInsideDepth, pts);
       line.resize(pts.size(), 0);
       const Vec2& next = con.segs[(i + 1) % con.segs.size()].a;
-      line[before] = s.kind == ContourSegKind::kLine && (s.b - next).norm() <= 1e-12;
+      line[before] =
+          s.kind == ContourSegKind::kLine && (s.b - next).norm() <= tol::kZLevelSharedEnd;
     }
     for (std::size_t k = 0; k < pts.size(); ++k) {
       const Vec2 &a = pts[k], &b = pts[(k + 1) % pts.size()];
@@ -178,8 +175,8 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
   fill_cells(q);
 
   // Reference points: the cell's centre, else a few other points of the cell, at least
-  // kRefClearance from the cell's edges; their parity by a ray towards +x over the edges of
-  // their row (half-open in y, as parity_inside is at its segment's line).
+  // tol::kZLevelRefClearance from the cell's edges; their parity by a ray towards +x over the edges
+  // of their row (half-open in y, as parity_inside is at its segment's line).
   const std::size_t cells = std::size_t(q.nx) * q.ny;
   q.ref.assign(cells, Vec2::Zero());
   q.ref_state.assign(cells, 2);
@@ -223,7 +220,7 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
         bool clear = true;
         for (std::uint32_t k = q.start[c]; k < q.start[c + 1] && clear; ++k)
           clear = point_segment_distance(r, q.edges[q.ids[k]][0], q.edges[q.ids[k]][1]) >=
-                  kRefClearance;
+                  tol::kZLevelRefClearance;
         if (!clear) continue;
         const auto right =
             o == 0 ? std::size_t(xs.end() - std::upper_bound(xs.begin(), xs.end(), r.x()))
@@ -271,7 +268,6 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
     }
     front.swap(next);
   }
-  if (higher.stats.repaired_links == 0) q.contours = higher.contours;
   return q;
 }
 
@@ -382,12 +378,13 @@ double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double
         for (int v = 0; v < n && far < best; ++v)
           far = std::max(far, point_segment_distance(hull[v], a, b));
         best = std::min(best, far);
-        if (nearest > kRefClearance) nearest = std::min(nearest, seg_hull(a, b, hull, n));
+        if (nearest > tol::kZLevelRefClearance)
+          nearest = std::min(nearest, seg_hull(a, b, hull, n));
       }
     }
   if (best < limit) return best;
   // An edge crosses or touches the hull (without one edge near all of it): not known.
-  if (nearest <= kRefClearance) return limit;
+  if (nearest <= tol::kZLevelRefClearance) return limit;
   // No edge meets the hull: it lies on one side; outside, it has no depth.
   const int c = cell_of(q, hull[0]);
   if (c < 0) return 0;

@@ -18,14 +18,12 @@ inline void sincos_half(double s, double& sn, double& cs) {
   cs = std::cos(0.5 * s);
 }
 
-// mm. Crossings found this far beyond a curve's end still count (the neighbouring curve that
-// continues it may miss them by rounding; a duplicate split is harmless).
-constexpr double kEndSlack = 1e-9;
 // B&B nodes per curve pair before the pair counts as coincident (identical ellipses).
 constexpr int kMaxNodes = 20000;
 
 double param_slack(const Curve& c) {
-  return c.kind == CurveKind::kLine ? kEndSlack : kEndSlack / (c.e1.norm() + c.e2.norm());
+  return c.kind == CurveKind::kLine ? tol::kZLevelSlack
+                                    : tol::kZLevelSlack / (c.e1.norm() + c.e2.norm());
 }
 
 bool in_range(const Curve& c, double& s) {
@@ -93,7 +91,7 @@ void line_line(const Curve& C, const Curve& D, std::vector<Hit>& out, bool& coin
     return;
   }
   const double denom = cross2(C.dir, D.dir);
-  if (std::abs(denom) > 1e-15) {
+  if (std::abs(denom) > tol::kZLevelParallel) {
     const double t = cross2(D.dir, C.a - D.a) / denom;
     add_hit(C, D, C.a + t * C.dir, t, out);
   }
@@ -175,7 +173,7 @@ struct RootSearch {
 
   void solve(double lo, double hi, double flo, double fhi) {
     for (int it = 0, side = 0; it < 100; ++it) {
-      if ((hi - lo) * speed < 1e-3 * tol::kZLevelRootLength) break;
+      if ((hi - lo) * speed < tol::kZLevelRootPrecision) break;
       double m = (lo * fhi - hi * flo) / (fhi - flo);
       if (!(m > lo && m < hi)) m = 0.5 * (lo + hi);
       const double fm = F(m);
@@ -231,7 +229,9 @@ void conic_conic(const Curve& C, const Curve& D, const Level& lv, std::vector<Hi
   const double fm = curve_implicit(Q, curve_point(P, 0.5 * P.len), lv.zc);
   const double on = tol::kZLevelOnBoundary * scale;
   std::vector<double> roots;
-  RootSearch rs{P, Q, lv.zc, curve_speed(P), hess_norm(Q), 1e-12 * scale * scale, 0, roots};
+  RootSearch rs{
+      P, Q,    lv.zc, curve_speed(P), hess_norm(Q), tol::kZLevelImplicitRounding * scale * scale,
+      0, roots};
   if (std::abs(f0) <= on && std::abs(f1) <= on && std::abs(fm) <= on) {
     rs.nodes = kMaxNodes + 1;
   } else {
@@ -295,7 +295,7 @@ double curve_param(const Curve& c, const Vec2& x) {
     if (!(den > 0)) break;
     const double step = r.dot(d1) / den;
     s -= step;
-    if (std::abs(step) * d1.norm() < 1e-15 * (1 + w.norm())) break;
+    if (std::abs(step) * d1.norm() < tol::kZLevelStep * (1 + w.norm())) break;
   }
   return s;
 }

@@ -72,7 +72,7 @@ bool mergeable(const RawSeg& p, const RawSeg& q) {
   const ContourSeg &a = p.seg, &b = q.seg;
   if (a.element != b.element || a.kind != b.kind || a.shadow != b.shadow) return false;
   if (a.kind == ContourSegKind::kLine)
-    return std::abs(cross2(p.tout, q.tin)) < 1e-12 && p.tout.dot(q.tin) > 0;
+    return std::abs(cross2(p.tout, q.tin)) < tol::kZLevelSameDirection && p.tout.dot(q.tin) > 0;
   return a.centre == b.centre && a.r1 == b.r1 && a.r2 == b.r2 && a.axis == b.axis;
 }
 
@@ -183,10 +183,10 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
 }  // namespace
 
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
-                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, double link,
+                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept,
                  ZLevelResult& out) {
   const auto n = std::uint32_t(kept.size());
-  // Cluster the ends within `link`.
+  // Cluster the ends within tol::kZLevelLink.
   std::vector<Vec2> pts(2 * std::size_t(n));
   for (std::uint32_t k = 0; k < n; ++k) {
     pts[2 * k] = kept[k].a;
@@ -198,13 +198,14 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
     return pts[a].x() != pts[b].x() ? pts[a].x() < pts[b].x() : a < b;
   });
   Dsu dsu(pts.size());
+  const double link = tol::kZLevelLink;
   for (std::size_t i = 0; i < order.size(); ++i)
     for (std::size_t j = i + 1; j < order.size() && pts[order[j]].x() - pts[order[i]].x() <= link;
          ++j)
       if ((pts[order[j]] - pts[order[i]]).norm() <= link) dsu.unite(order[i], order[j]);
   std::vector<std::uint32_t> cl(pts.size());
   for (std::uint32_t i = 0; i < pts.size(); ++i) cl[i] = dsu.find(i);
-  // Pieces whose ends fall together are slivers (shorter than `link`).
+  // Pieces whose ends fall together are slivers (shorter than tol::kZLevelLink).
   std::vector<std::uint8_t> dead(n, 0);
   for (std::uint32_t k = 0; k < n; ++k) dead[k] = cl[2 * k] == cl[2 * k + 1];
   // Per cluster: pieces ending there (in) and starting there (out).

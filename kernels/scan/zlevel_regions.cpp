@@ -106,8 +106,8 @@ bool build_facet(const OffsetElements& el, std::uint32_t f, const Level& lv, Reg
   return true;
 }
 
-bool build_edge(const OffsetElements& el, std::uint32_t e, const Level& lv, bool reach, Region& g) {
-  if (reach && el.edge_reachable.size() == el.edge_count() && !el.edge_reachable[e]) return false;
+bool build_edge(const OffsetElements& el, std::uint32_t e, const Level& lv, Region& g) {
+  if (el.edge_reachable.size() == el.edge_count() && !el.edge_reachable[e]) return false;
   const auto& ev = el.edge_vertices[e];
   Vec3 A = el.points[ev[0]], B = el.points[ev[1]];
   if (B.z() < A.z()) std::swap(A, B);
@@ -138,10 +138,8 @@ bool build_edge(const OffsetElements& el, std::uint32_t e, const Level& lv, bool
   return true;
 }
 
-bool build_vertex(const OffsetElements& el, std::uint32_t v, const Level& lv, bool reach,
-                  Region& g) {
-  if (reach && el.vertex_reachable.size() == el.vertex_count() && !el.vertex_reachable[v])
-    return false;
+bool build_vertex(const OffsetElements& el, std::uint32_t v, const Level& lv, Region& g) {
+  if (el.vertex_reachable.size() == el.vertex_count() && !el.vertex_reachable[v]) return false;
   const Vec3& p = el.points[el.vertex_source[v]];
   const double h = std::max(0.0, lv.zc - p.z());
   if (!(h < lv.R)) return false;
@@ -267,7 +265,7 @@ void ellipse_arcs(const Region& g, std::uint32_t gi, const Level& lv, double k, 
   const Vec2 v = perp(u);
   const Vec2 centre = xy(g.a) + ((lv.zc - g.a.z()) / k) * u;
   const double sweep = te - ts;
-  const int n = std::max(1, int(std::ceil(sweep / (kPi / 2) - 1e-12)));
+  const int n = std::max(1, int(std::ceil(sweep / (kPi / 2) - tol::kCountSlack)));
   Vec2 prev = pa;
   for (int j = 0; j < n; ++j) {
     const double tj = ts + sweep * j / n;
@@ -403,12 +401,11 @@ void vertex_curves(const Region& g, std::uint32_t gi, const Level& lv, std::vect
 
 }  // namespace
 
-bool build_region(const OffsetElements& el, std::uint32_t id, const Level& lv, bool reach,
-                  Region& out) {
+bool build_region(const OffsetElements& el, std::uint32_t id, const Level& lv, Region& out) {
   const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
   if (id < nf) return build_facet(el, id, lv, out);
-  if (id < nf + ne) return build_edge(el, id - nf, lv, reach, out);
-  return build_vertex(el, id - nf - ne, lv, reach, out);
+  if (id < nf + ne) return build_edge(el, id - nf, lv, out);
+  return build_vertex(el, id - nf - ne, lv, out);
 }
 
 double region_phi(const Region& g, const Vec2& x, const Level& lv, Vec2* outward, double* contact) {
