@@ -40,6 +40,8 @@ EXTRA=(
   nlohmann-json3-dev   # batch/CMakeLists.txt: find_package(nlohmann_json 3)
   libdxflib-dev        # batch/io/CMakeLists.txt: DXF pocket profiles (pkg-config dxflib)
   libpolyclipping-dev  # tests/kernels: Clipper as an independent offset oracle (tests only)
+  openmpi-bin          # mpirun for ncpath-mpi (batch/CMakeLists.txt) and its tests
+  libopenmpi-dev       # batch/CMakeLists.txt: find_package(MPI COMPONENTS CXX), ncpath-mpi
 )
 # shellcheck disable=SC2206  # word splitting of the env var is intended
 EXTRA+=(${NCPATH_EXTRA_PACKAGES:-})

@@ -15,6 +15,11 @@
 #include "batch/cli/verify_cli.hpp"
 #include "batch/jobs/batch_schedule.hpp"
 #include "batch/jobs/job_runner.hpp"
+#ifdef NCPATH_MPI
+#include <mpi.h>
+
+#include "batch/jobs/mpi_batch.hpp"
+#endif
 
 using namespace ncpath;
 using namespace ncpath::cli;
@@ -114,8 +119,28 @@ std::string human(double v) {
   return buf;
 }
 
+#ifdef NCPATH_MPI
+// MPI from the start of main to its end (ncpath-mpi); only this thread calls MPI.
+struct MpiSession {
+  MpiSession(int& argc, char**& argv) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  }
+  ~MpiSession() { MPI_Finalize(); }
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+#endif
+
+// Runs the batch (over the MPI ranks in ncpath-mpi: only rank 0 prints) and prints a line
+// per job.
 int run(const jobs::BatchSpec& batch, bool quiet) {
-  cli::BatchProgress bar(!quiet && cli::stderr_is_terminal(), batch.jobs.size());
+#ifdef NCPATH_MPI
+  const bool mpi = true;
+#else
+  const bool mpi = false;
+#endif
+  cli::BatchProgress bar(!quiet && !mpi && cli::stderr_is_terminal(), batch.jobs.size());
   jobs::BatchObserver obs;
   obs.job_started = [&](std::size_t i, std::size_t, const jobs::JobSpec& j) {
     bar.started(i, j.name);
@@ -125,24 +150,43 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
   };
   obs.job_finished = [&](std::size_t i, const jobs::JobOutcome&) { bar.finished(i); };
   std::vector<jobs::JobOutcome> outcomes;
+  std::vector<int> ranks;  // where each job ran (ncpath-mpi)
   try {
+#ifdef NCPATH_MPI
+    std::size_t done = 0;
+    obs.job_finished = [&](std::size_t, const jobs::JobOutcome& o) {
+      if (!quiet)
+        std::fprintf(stderr, "[%zu/%zu] %s %s\n", ++done, batch.jobs.size(), o.name.c_str(),
+                     o.status.c_str());
+    };
+    jobs::MpiBatchResult r = jobs::run_batch_mpi(batch, obs);
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank != 0) return 0;
+    outcomes = std::move(r.outcomes);
+    ranks = std::move(r.rank);
+#else
     outcomes = jobs::run_batch(batch, obs);
+#endif
   } catch (const std::exception& e) {
     bar.clear();
     std::fprintf(stderr, "ncpath: %s\n", e.what());
     return 2;
   }
   int failed = 0;
-  for (const auto& o : outcomes) {
+  for (std::size_t i = 0; i < outcomes.size(); ++i) {
+    const jobs::JobOutcome& o = outcomes[i];
+    const std::string where = ranks.empty() ? "" : " on rank " + std::to_string(ranks[i]);
     if (o.status == "ok") {
-      std::printf("  %-24s ok      %spoints in %.2f s (%spoints/s computing), peak RSS %.0f MB\n",
+      std::printf("  %-24s ok      %spoints in %.2f s (%spoints/s computing), peak RSS %.0f MB%s\n",
                   o.name.c_str(), human(static_cast<double>(o.points)).c_str(), o.seconds,
                   human(o.compute_s > 0 ? o.points / o.compute_s : 0).c_str(),
-                  o.peak_rss_bytes / 1048576.0);
+                  o.peak_rss_bytes / 1048576.0, where.c_str());
       if (!o.message.empty()) std::printf("  %-24s %s\n", "", o.message.c_str());
     } else {
       ++failed;
-      std::printf("  %-24s %s: %s\n", o.name.c_str(), o.status.c_str(), o.message.c_str());
+      std::printf("  %-24s %s: %s%s\n", o.name.c_str(), o.status.c_str(), o.message.c_str(),
+                  where.c_str());
     }
   }
   std::printf("ncpath: %zu job(s), %zu ok, %d failed -> %s\n", outcomes.size(),
@@ -154,6 +198,9 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
 
 int main(int argc, char** argv) {
   reexec_with_huge_pages(argv);
+#ifdef NCPATH_MPI
+  MpiSession mpi(argc, argv);
+#endif
   CLI::App app{
       "ncpath: exact cutter-location (CL) data for NC milling, in bulk.\n"
       "Units are mm; CL points are tool-tip positions, tool axis +Z."};

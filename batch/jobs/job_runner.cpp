@@ -424,7 +424,10 @@ std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& o
       throw std::runtime_error(dir.string() + ": cannot create the output folder: " + ec.message());
   }
   out::ClFile file(batch.output, NCPATH_VERSION);
+  const auto jobs = static_cast<std::int64_t>(batch.jobs.size());
+  file.mark_batch(jobs, false);
   std::vector<JobOutcome> outcomes = BatchRun(batch, obs, file).run();
+  file.mark_batch(jobs, true);
   file.close();
   return outcomes;
 }

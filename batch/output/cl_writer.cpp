@@ -31,6 +31,18 @@ ClFile::ClFile(const std::filesystem::path& path, std::string_view ncpath_versio
   s.jobs = h5::create_group(s.file.get(), "jobs", s.ctx);
 }
 
+void ClFile::mark_batch(std::int64_t jobs, bool complete) {
+  if (!state_) throw std::logic_error("ClFile::mark_batch: moved-from ClFile");
+  const auto lock = h5::library_lock();
+  detail::FileState& s = *state_;
+  for (const char* name : {"batch_jobs", "batch_complete"})
+    if (H5Aexists(s.file.get(), name) > 0)
+      h5::check(H5Adelete(s.file.get(), name), s.ctx, std::string("replace attribute ") + name);
+  h5::write_attribute(s.file.get(), "batch_jobs", jobs, s.ctx);
+  h5::write_attribute(s.file.get(), "batch_complete", std::int64_t{complete}, s.ctx);
+  h5::check(H5Fflush(s.file.get(), H5F_SCOPE_LOCAL), s.ctx, "flush file");
+}
+
 ClFile::~ClFile() {
   try {
     if (state_) state_->close();

@@ -97,6 +97,11 @@ class ClFile {
   // that name; std::logic_error while a job is open here; std::runtime_error from HDF5.
   void copy_job(const std::filesystem::path& from, const std::string& name);
 
+  // Root attributes of a batch's file: `batch_jobs` (the jobs the batch has) and
+  // `batch_complete` (0 until the batch has ended and every job is in the file; a file whose
+  // writer was killed keeps 0), flushed at once. std::runtime_error from HDF5.
+  void mark_batch(std::int64_t jobs, bool complete);
+
   // Closes an open job and the file, reporting errors (std::runtime_error). Idempotent.
   void close();
 

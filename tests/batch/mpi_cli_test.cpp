@@ -1,0 +1,122 @@
+// ncpath-mpi end to end (batch/jobs/mpi_batch.hpp): a batch spread over 1, 2 and 3 MPI ranks
+// on this machine writes the same datasets, in the same order, as one ncpath process; a job
+// that fails fails alone; the file says the batch is complete.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "batch/io/stl_writer.hpp"
+#include "tests/batch/cli_run.hpp"
+#include "tests/batch/output/h5_read.hpp"
+#include "tests/support/meshes.hpp"
+
+namespace ncpath {
+namespace {
+
+namespace h5 = out::test;
+using test::CmdResult;
+
+// `mpirun -np ranks ncpath-mpi args` (oversubscribed: more ranks than cores is fine here).
+CmdResult mpirun(int ranks, const std::string& args) {
+  const std::string cmd = "mpirun --oversubscribe --allow-run-as-root -np " +
+                          std::to_string(ranks) + " " + NCPATH_BINARY_DIR + "/batch/ncpath-mpi " +
+                          args + " 2>&1";
+  CmdResult r{-1, ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (p && fgets(buf.data(), buf.size(), p)) r.output += buf.data();
+  const int status = p ? pclose(p) : -1;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::filesystem::path fixture_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto dir = h5::out_dir(std::string("mpi_") + (info ? info->name() : "none"));
+  const TriangleMesh m = test::height_field(
+      20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
+  io::write_binary_stl(dir / "part.stl", m);
+  return dir;
+}
+
+// Seven jobs of five operations on two meshes (one missing: it fails) and a pocket.
+void write_batch(const std::filesystem::path& dir) {
+  const std::string plate =
+      (std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/pockets/plate.toml").string();
+  std::ofstream(dir / "batch.toml")
+      << "output = \"x.h5\"\n"
+      << "[[job]]\nname = \"raster\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+      << "params = { interval = 0.25, step = 0.05 }\n"
+      << "[[job]]\nname = \"zlevel\"\noperation = \"zlevel\"\ninput = \"part.stl\"\n"
+      << "tool = \"ball:4\"\nparams = { step_down = 0.5 }\n"
+      << "[[job]]\nname = \"missing\"\ninput = \"none.stl\"\ntool = \"ball:4\"\n"
+      << "[[job]]\nname = \"scan\"\noperation = \"scan\"\ninput = \"part.stl\"\n"
+      << "tool = \"ball:5\"\ntransform = { scale = 1.5 }\nparams = { interval = 1 }\n"
+      << "[[job]]\nname = \"pocket\"\noperation = \"pocket\"\ninput = \"" << plate
+      << "\"\ntool = \"flat:8\"\nparams = { stepover = \"40%\", depth = 10, stepdown = 2.5 }\n"
+      << "[[job]]\nname = \"pencil\"\noperation = \"pencil\"\ninput = \"part.stl\"\n"
+      << "tool = \"ball:6\"\nparams = { interval = 0.5 }\n"
+      << "[[job]]\nname = \"raster2\"\ninput = \"part.stl\"\ntool = \"flat:3\"\n"
+      << "transform = { scale = 1.5 }\nparams = { interval = 0.5, step = 0.25 }\n";
+}
+
+// Statistics differ: timings, and what a job shared with others (mesh_shared,
+// conditioned_shared, ...), which depends on the jobs that ran in the same process.
+bool statistic(const std::string& name) { return name.find("/stats/") != std::string::npos; }
+
+// Job names in the order the file holds them (creation order).
+std::vector<std::string> job_order(const std::filesystem::path& file) {
+  h5::Id f = h5::open_read(file);
+  h5::Id jobs(H5Gopen2(f, "/jobs", H5P_DEFAULT));
+  std::vector<std::string> names;
+  H5Literate(
+      jobs, H5_INDEX_CRT_ORDER, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* out) -> herr_t {
+        static_cast<std::vector<std::string>*>(out)->push_back(name);
+        return 0;
+      },
+      &names);
+  return names;
+}
+
+TEST(MpiCli, RanksWriteWhatOneProcessWrites) {
+  const auto dir = fixture_dir();
+  write_batch(dir);
+  const std::string batch = (dir / "batch.toml").string();
+  const CmdResult one =
+      test::ncpath("run " + batch + " --quiet --threads 1 --concurrent-jobs 1 --out " +
+                   (dir / "one.h5").string());
+  ASSERT_EQ(one.exit_code, 1) << one.output;  // the missing input fails
+  const std::vector<std::string> order = job_order(dir / "one.h5");
+  ASSERT_EQ(order.size(), 7u);
+  for (int ranks : {1, 2, 3}) {
+    SCOPED_TRACE(testing::Message() << ranks << " ranks");
+    const auto out = dir / ("np" + std::to_string(ranks) + ".h5");
+    const CmdResult r =
+        mpirun(ranks, "run " + batch + " --quiet --threads 1 --out " + out.string());
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("7 job(s), 6 ok, 1 failed"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("on rank " + std::to_string(ranks - 1)), std::string::npos)
+        << r.output;  // every rank ran a job (seven jobs, handed out one at a time)
+    EXPECT_TRUE(h5::same_content(dir / "one.h5", out, statistic));
+    EXPECT_EQ(job_order(out), order);
+    h5::Id f = h5::open_read(out);
+    h5::Id missing(H5Gopen2(f, "/jobs/missing", H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(missing, "status"), "invalid_input");
+    EXPECT_EQ(h5::attr_i64(f, "batch_jobs"), 7);
+    EXPECT_EQ(h5::attr_i64(f, "batch_complete"), 1);
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".spool-"), std::string::npos) << entry.path();
+}
+
+}  // namespace
+}  // namespace ncpath
