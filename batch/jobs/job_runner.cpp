@@ -369,6 +369,7 @@ class BatchRun {
       out::ClJob cl = output_.begin(i, job.name, info);
       std::vector<StatValue> stats;
       o = run_one(job, i, meshes_, cl, obs_, control, stats);
+      if (batch_.mpi_rank >= 0) stats.push_back({"mpi_rank", std::int64_t{batch_.mpi_rank}, ""});
       meshes_.done(i);  // before writing: a mesh no later job needs is freed now
       mesh_done = true;
       cl.set_status(o.status, o.message);

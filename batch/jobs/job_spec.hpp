@@ -148,6 +148,7 @@ struct BatchSpec {
   std::uint64_t memory_limit = 0;  // bytes; 0 = default_memory_limit()
   VerifyMode verify = VerifyMode::kFull;  // default of the jobs that do not set `verify`
   std::vector<JobSpec> jobs;
+  int mpi_rank = -1;  // >= 0 (ncpath-mpi): every job's statistic `mpi_rank`, where it ran
 };
 
 // "ball:5" -> ball_cutter(5). Returns an error message naming the problem, or "".

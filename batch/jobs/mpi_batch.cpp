@@ -4,8 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -32,6 +36,12 @@ constexpr int kTagBytes = 4;
 constexpr std::int64_t kNoJob = -1;
 constexpr std::size_t kMaxMessage = std::size_t(1) << 30;  // bytes per MPI message
 
+// Set by SIGTERM or SIGINT on rank 0: mpirun sends SIGTERM when a rank has died (or the user
+// stops the batch). Rank 0 then finishes the copy it is making, closes the file (whole jobs
+// only, batch_complete = 0) and exits.
+std::atomic<bool> g_stop{false};
+extern "C" void on_stop_signal(int) { g_stop = true; }
+
 // Job indices in hand-out order: the largest estimate first, then batch order.
 std::vector<std::size_t> hand_out_order(const BatchSpec& batch) {
   std::vector<std::uint64_t> est;
@@ -45,8 +55,9 @@ std::vector<std::size_t> hand_out_order(const BatchSpec& batch) {
 
 // Runs job i of the batch alone into a CL file of its own at `path`: the job's datasets are
 // those a whole batch writes (run_batch writes each job the same whatever runs beside it).
-JobOutcome run_alone(const BatchSpec& batch, std::size_t i, const fs::path& path) {
+JobOutcome run_alone(const BatchSpec& batch, std::size_t i, const fs::path& path, int rank) {
   BatchSpec one = batch;
+  one.mpi_rank = rank;
   one.jobs = {batch.jobs[i]};
   one.output = path;
   one.concurrent_jobs = 1;
@@ -95,7 +106,7 @@ std::string read_bytes(const fs::path& path) {
 
 // A rank other than 0: asks for jobs until told to stop, runs each, sends back its outcome
 // and its CL file.
-void work(const BatchSpec& batch) {
+void work(const BatchSpec& batch, int rank) {
   const fs::path dir = fs::temp_directory_path();
   for (;;) {
     MPI_Send(nullptr, 0, MPI_BYTE, 0, kTagAsk, MPI_COMM_WORLD);
@@ -104,7 +115,7 @@ void work(const BatchSpec& batch) {
     if (job < 0) return;
     const fs::path path =
         dir / ("ncpath-" + std::to_string(::getpid()) + "-" + std::to_string(job) + ".h5");
-    const JobOutcome o = run_alone(batch, std::size_t(job), path);
+    const JobOutcome o = run_alone(batch, std::size_t(job), path, rank);
     const std::string bytes = read_bytes(path);
     std::error_code ec;
     fs::remove(path, ec);
@@ -144,6 +155,7 @@ class Coordinator {
     if (local_running_) local = std::thread([this] { run_local(); });
     int stopped = 0;  // ranks told to stop
     while (stopped < ranks_ - 1 || busy()) {
+      if (g_stop) stop_now(file);
       take_local_results();
       int flag = 0;
       MPI_Status st;
@@ -182,6 +194,23 @@ class Coordinator {
     return std::int64_t(order_[next_++]);
   }
 
+  // Closes the file with the jobs copied so far (batch_complete stays 0), removes the spool
+  // files and ends the process at once: the job rank 0 runs and the other ranks are not
+  // waited for.
+  [[noreturn]] void stop_now(std::optional<out::ClFile>& file) {
+    try {
+      if (file) file->close();
+    } catch (...) {
+    }
+    for (std::size_t i = 0; i < have_.size(); ++i) {
+      std::error_code ec;
+      fs::remove(spool(i), ec);
+    }
+    std::fprintf(stderr, "ncpath-mpi: stopped by a signal; %zu of %zu jobs are in %s\n", copied_,
+                 have_.size(), batch_.output.string().c_str());
+    std::_Exit(3);
+  }
+
   // Whether rank 0 still runs a job, or a job handed out has not come back.
   bool busy() {
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -190,7 +219,7 @@ class Coordinator {
 
   void run_local() {
     for (std::int64_t job; (job = take()) >= 0;) {
-      const JobOutcome o = run_alone(batch_, std::size_t(job), spool(std::size_t(job)));
+      const JobOutcome o = run_alone(batch_, std::size_t(job), spool(std::size_t(job)), 0);
       const std::lock_guard<std::mutex> lock(mutex_);
       local_done_.emplace_back(std::size_t(job), o);
     }
@@ -285,9 +314,11 @@ MpiBatchResult run_batch_mpi(const BatchSpec& batch, const BatchObserver& observ
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   if (rank != 0) {
-    work(batch);
+    work(batch, rank);
     return {};
   }
+  std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGINT, on_stop_signal);
   if (const auto dir = batch.output.parent_path(); !dir.empty()) {
     std::error_code ec;
     fs::create_directories(dir, ec);

@@ -1,8 +1,10 @@
 // ncpath-mpi end to end (batch/jobs/mpi_batch.hpp): a batch spread over 1, 2 and 3 MPI ranks
 // on this machine writes the same datasets, in the same order, as one ncpath process; a job
-// that fails fails alone; the file says the batch is complete.
+// that fails fails alone; the file says the batch is complete; a rank killed half-way leaves
+// a readable file with the jobs copied so far.
 #include <gtest/gtest.h>
 
+#include <signal.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -113,6 +115,77 @@ TEST(MpiCli, RanksWriteWhatOneProcessWrites) {
     EXPECT_EQ(h5::attr_str(missing, "status"), "invalid_input");
     EXPECT_EQ(h5::attr_i64(f, "batch_jobs"), 7);
     EXPECT_EQ(h5::attr_i64(f, "batch_complete"), 1);
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    EXPECT_EQ(entry.path().string().find(".spool-"), std::string::npos) << entry.path();
+}
+
+// The pid of the ncpath-mpi process of MPI rank `rank` whose command line holds `marker`,
+// or 0 when there is none (yet).
+pid_t rank_pid(int rank, const std::string& marker) {
+  const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+  for (const auto& e : std::filesystem::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string cmd = test::slurp(e.path() / "cmdline");
+    if (cmd.find("ncpath-mpi") == std::string::npos || cmd.find(marker) == std::string::npos)
+      continue;
+    const std::string env = test::slurp(e.path() / "environ");
+    for (std::size_t p = 0; p < env.size();) {
+      const std::size_t end = std::min(env.find('\0', p), env.size());
+      if (env.compare(p, end - p, want) == 0) return pid_t(std::stoi(name));
+      p = end + 1;
+    }
+  }
+  return 0;
+}
+
+// Twelve raster jobs on three ranks; rank 2 is killed once four jobs have come back to
+// rank 0 (its progress lines). mpirun then stops the others (SIGTERM): rank 0 closes the
+// file with the jobs copied so far, each whole, and batch_complete = 0; no spool file is
+// left behind.
+TEST(MpiCli, AKilledRankLeavesTheFinishedJobsReadable) {
+  const auto dir = fixture_dir();
+  {
+    std::ofstream b(dir / "batch.toml");
+    b << "output = \"x.h5\"\n";
+    for (int k = 0; k < 12; ++k)
+      b << "[[job]]\nname = \"r" << k << "\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
+        << "params = { interval = 0.1, step = 0.05 }\n";
+  }
+  const auto out = dir / "killed.h5";
+  const std::string cmd = "mpirun --oversubscribe --allow-run-as-root -np 3 " +
+                          std::string(NCPATH_BINARY_DIR) + "/batch/ncpath-mpi run " +
+                          (dir / "batch.toml").string() + " --threads 1 --out " + out.string() +
+                          " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string output;
+  std::array<char, 4096> buf;
+  int back = 0;
+  bool killed = false;
+  while (fgets(buf.data(), buf.size(), p)) {
+    output += buf.data();
+    if (buf[0] == '[' && ++back >= 4 && !killed) {
+      if (const pid_t victim = rank_pid(2, out.string()); victim != 0)
+        killed = ::kill(victim, SIGKILL) == 0;
+    }
+  }
+  const int status = pclose(p);
+  ASSERT_TRUE(killed) << output;
+  EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  h5::Id f = h5::open_read(out);
+  EXPECT_EQ(h5::attr_i64(f, "batch_jobs"), 12);
+  EXPECT_EQ(h5::attr_i64(f, "batch_complete"), 0) << output;
+  const std::vector<std::string> names = job_order(out);
+  EXPECT_GE(names.size(), 1u) << output;
+  EXPECT_LT(names.size(), 12u) << output;
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    EXPECT_EQ(names[k], "r" + std::to_string(k));  // batch order, from the first job on
+    h5::Id g(H5Gopen2(f, ("/jobs/" + names[k]).c_str(), H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(g, "status"), "ok");
+    EXPECT_GT(h5::read_all<double>(f, "/jobs/" + names[k] + "/cl/points", H5T_NATIVE_DOUBLE).size(),
+              100u);
   }
   for (const auto& entry : std::filesystem::directory_iterator(dir))
     EXPECT_EQ(entry.path().string().find(".spool-"), std::string::npos) << entry.path();
