@@ -348,23 +348,7 @@ TEST(Cli, HelpDocumentsEveryOption) {
 // left. Also under a memory budget so small that every job runs alone.
 TEST(Cli, ConcurrentJobsWriteWhatJobsOneAtATimeWrite) {
   const auto dir = fixture_dir();
-  const std::string plate =
-      (std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/pockets/plate.toml").string();
-  std::ofstream(dir / "batch.toml")
-      << "output = \"x.h5\"\nthreads = 2\n"
-      << "[[job]]\nname = \"raster\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
-      << "params = { interval = 0.25, step = 0.05 }\n"
-      << "[[job]]\nname = \"zlevel\"\noperation = \"zlevel\"\ninput = \"part.stl\"\n"
-      << "tool = \"ball:4\"\nparams = { step_down = 0.5 }\n"
-      << "[[job]]\nname = \"missing\"\ninput = \"none.stl\"\ntool = \"ball:4\"\n"
-      << "[[job]]\nname = \"scan\"\noperation = \"scan\"\ninput = \"part.stl\"\n"
-      << "tool = \"ball:5\"\ntransform = { scale = 1.5 }\nparams = { interval = 1 }\n"
-      << "[[job]]\nname = \"pocket\"\noperation = \"pocket\"\ninput = \"" << plate
-      << "\"\ntool = \"flat:8\"\nparams = { stepover = \"40%\", depth = 10, stepdown = 2.5 }\n"
-      << "[[job]]\nname = \"pencil\"\noperation = \"pencil\"\ninput = \"part.stl\"\n"
-      << "tool = \"ball:6\"\nparams = { interval = 0.5 }\n"
-      << "[[job]]\nname = \"raster2\"\ninput = \"part.stl\"\ntool = \"flat:3\"\n"
-      << "transform = { scale = 1.5 }\nparams = { interval = 0.5, step = 0.25 }\n";
+  test::write_seven_job_batch(dir);
   const char* runs[][2] = {{"one.h5", "--concurrent-jobs 1"},
                            {"many.h5", "--concurrent-jobs 2"},
                            {"tight.h5", "--concurrent-jobs 2 --memory-limit 1"}};

@@ -8,12 +8,10 @@
 #include <sys/wait.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
-#include <thread>
 
 #include "batch/io/stl_writer.hpp"
 #include "tests/batch/cli_run.hpp"
@@ -28,16 +26,9 @@ using test::CmdResult;
 
 // `mpirun -np ranks ncpath-mpi args` (oversubscribed: more ranks than cores is fine here).
 CmdResult mpirun(int ranks, const std::string& args) {
-  const std::string cmd = "mpirun --oversubscribe --allow-run-as-root -np " +
-                          std::to_string(ranks) + " " + NCPATH_BINARY_DIR + "/batch/ncpath-mpi " +
-                          args + " 2>&1";
-  CmdResult r{-1, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (p && fgets(buf.data(), buf.size(), p)) r.output += buf.data();
-  const int status = p ? pclose(p) : -1;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return test::run_command("mpirun --oversubscribe --allow-run-as-root -np " +
+                           std::to_string(ranks) + " " + NCPATH_BINARY_DIR + "/batch/ncpath-mpi " +
+                           args);
 }
 
 std::filesystem::path fixture_dir() {
@@ -47,27 +38,6 @@ std::filesystem::path fixture_dir() {
       20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
   io::write_binary_stl(dir / "part.stl", m);
   return dir;
-}
-
-// Seven jobs of five operations on two meshes (one missing: it fails) and a pocket.
-void write_batch(const std::filesystem::path& dir) {
-  const std::string plate =
-      (std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/pockets/plate.toml").string();
-  std::ofstream(dir / "batch.toml")
-      << "output = \"x.h5\"\n"
-      << "[[job]]\nname = \"raster\"\ninput = \"part.stl\"\ntool = \"ball:4\"\n"
-      << "params = { interval = 0.25, step = 0.05 }\n"
-      << "[[job]]\nname = \"zlevel\"\noperation = \"zlevel\"\ninput = \"part.stl\"\n"
-      << "tool = \"ball:4\"\nparams = { step_down = 0.5 }\n"
-      << "[[job]]\nname = \"missing\"\ninput = \"none.stl\"\ntool = \"ball:4\"\n"
-      << "[[job]]\nname = \"scan\"\noperation = \"scan\"\ninput = \"part.stl\"\n"
-      << "tool = \"ball:5\"\ntransform = { scale = 1.5 }\nparams = { interval = 1 }\n"
-      << "[[job]]\nname = \"pocket\"\noperation = \"pocket\"\ninput = \"" << plate
-      << "\"\ntool = \"flat:8\"\nparams = { stepover = \"40%\", depth = 10, stepdown = 2.5 }\n"
-      << "[[job]]\nname = \"pencil\"\noperation = \"pencil\"\ninput = \"part.stl\"\n"
-      << "tool = \"ball:6\"\nparams = { interval = 0.5 }\n"
-      << "[[job]]\nname = \"raster2\"\ninput = \"part.stl\"\ntool = \"flat:3\"\n"
-      << "transform = { scale = 1.5 }\nparams = { interval = 0.5, step = 0.25 }\n";
 }
 
 // Statistics differ: timings, and what a job shared with others (mesh_shared,
@@ -91,7 +61,7 @@ std::vector<std::string> job_order(const std::filesystem::path& file) {
 
 TEST(MpiCli, RanksWriteWhatOneProcessWrites) {
   const auto dir = fixture_dir();
-  write_batch(dir);
+  test::write_seven_job_batch(dir);
   const std::string batch = (dir / "batch.toml").string();
   const CmdResult one =
       test::ncpath("run " + batch + " --quiet --threads 1 --concurrent-jobs 1 --out " +
