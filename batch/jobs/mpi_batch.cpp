@@ -97,6 +97,13 @@ JobOutcome outcome_of(const nlohmann::json& j) {
   return o;
 }
 
+// Where this process writes job i's own CL file: the temporary folder, so that a rank
+// stopped half-way leaves nothing next to the output.
+fs::path job_file(std::size_t i) {
+  return fs::temp_directory_path() /
+         ("ncpath-" + std::to_string(::getpid()) + "-" + std::to_string(i) + ".h5");
+}
+
 // The file's bytes; empty when it does not exist (the job could not create it).
 std::string read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -107,14 +114,12 @@ std::string read_bytes(const fs::path& path) {
 // A rank other than 0: asks for jobs until told to stop, runs each, sends back its outcome
 // and its CL file.
 void work(const BatchSpec& batch, int rank) {
-  const fs::path dir = fs::temp_directory_path();
   for (;;) {
     MPI_Send(nullptr, 0, MPI_BYTE, 0, kTagAsk, MPI_COMM_WORLD);
     std::int64_t job = kNoJob;
     MPI_Recv(&job, 1, MPI_INT64_T, 0, kTagJob, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (job < 0) return;
-    const fs::path path =
-        dir / ("ncpath-" + std::to_string(::getpid()) + "-" + std::to_string(job) + ".h5");
+    const fs::path path = job_file(std::size_t(job));
     const JobOutcome o = run_alone(batch, std::size_t(job), path, rank);
     const std::string bytes = read_bytes(path);
     std::error_code ec;
@@ -182,30 +187,32 @@ class Coordinator {
   }
 
  private:
-  fs::path spool(std::size_t i) const {
-    fs::path p = batch_.output;
-    p += ".spool-" + std::to_string(i) + ".h5";
-    return p;
+  void remove_spools() const {
+    for (std::size_t i = 0; i < have_.size(); ++i) {
+      std::error_code ec;
+      fs::remove(job_file(i), ec);
+    }
   }
 
   std::int64_t take() {
     const std::lock_guard<std::mutex> lock(mutex_);
-    if (error_ || next_ >= order_.size()) return kNoJob;
+    if (error_ || g_stop || next_ >= order_.size()) return kNoJob;
     return std::int64_t(order_[next_++]);
   }
 
-  // Closes the file with the jobs copied so far (batch_complete stays 0), removes the spool
-  // files and ends the process at once: the job rank 0 runs and the other ranks are not
-  // waited for.
+  // Removes the spool files, closes the file with the jobs copied so far (batch_complete
+  // stays 0) and ends the process at once: the job rank 0 runs and the other ranks are not
+  // waited for. The spool files go first: mpirun sends SIGKILL a second after SIGTERM, and
+  // closing may wait for HDF5 while the job running here writes; once more after closing,
+  // as that job may have created its file meanwhile (take() hands out no job once g_stop is
+  // set). A SIGKILL can still leave one in the temporary folder.
   [[noreturn]] void stop_now(std::optional<out::ClFile>& file) {
+    remove_spools();
     try {
       if (file) file->close();
     } catch (...) {
     }
-    for (std::size_t i = 0; i < have_.size(); ++i) {
-      std::error_code ec;
-      fs::remove(spool(i), ec);
-    }
+    remove_spools();
     std::fprintf(stderr, "ncpath-mpi: stopped by a signal; %zu of %zu jobs are in %s\n", copied_,
                  have_.size(), batch_.output.string().c_str());
     std::_Exit(3);
@@ -219,7 +226,7 @@ class Coordinator {
 
   void run_local() {
     for (std::int64_t job; (job = take()) >= 0;) {
-      const JobOutcome o = run_alone(batch_, std::size_t(job), spool(std::size_t(job)), 0);
+      const JobOutcome o = run_alone(batch_, std::size_t(job), job_file(std::size_t(job)), 0);
       const std::lock_guard<std::mutex> lock(mutex_);
       local_done_.emplace_back(std::size_t(job), o);
     }
@@ -245,7 +252,7 @@ class Coordinator {
     const nlohmann::json j = nlohmann::json::parse(head);
     const auto i = j.at("index").get<std::size_t>();
     auto left = j.at("bytes").get<std::size_t>();
-    std::ofstream out(spool(i), std::ios::binary | std::ios::trunc);
+    std::ofstream out(job_file(i), std::ios::binary | std::ios::trunc);
     std::string buf;
     while (left > 0) {
       buf.resize(std::min(kMaxMessage, left));
@@ -276,7 +283,7 @@ class Coordinator {
   void copy_in_order() {
     for (; copied_ < have_.size() && have_[copied_]; ++copied_) {
       const JobSpec& job = batch_.jobs[copied_];
-      const fs::path from = spool(copied_);
+      const fs::path from = job_file(copied_);
       if (fs::exists(from)) {
         file_->copy_job(from, job.name);
       } else {  // the job could not create its file: its status alone

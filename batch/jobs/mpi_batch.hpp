@@ -5,11 +5,12 @@
 // Rank 0 hands jobs out one at a time, largest first (by estimate_job_bytes, then batch
 // order), to the rank that asks: a slow job does not hold up the others' hand-out. Every rank
 // runs the jobs it is given, each alone into a CL file of its own (run_batch on a one-job
-// batch: the same datasets as in a whole batch); rank 0 runs jobs too, in a thread beside
-// the one that talks MPI. A rank other than 0 sends its file's bytes to rank 0, which copies
-// the jobs into the output in batch order as they come in (out::ClFile::copy_job, flushed
-// after each), so that a batch whose ranks die leaves a readable file with every job copied
-// so far. A job that fails fails alone, on whichever rank ran it.
+// batch: the same datasets as in a whole batch) in its temporary folder; rank 0 runs jobs
+// too, in a thread beside the one that talks MPI. A rank other than 0 sends its file's bytes
+// to rank 0, which copies the jobs into the output in batch order as they come in
+// (out::ClFile::copy_job, flushed after each), so that a batch whose ranks die leaves a
+// readable file with every job copied so far. A job that fails fails alone, on whichever
+// rank ran it.
 //
 // Built only when MPI is found (target ncpath-mpi); the serial ncpath does not use it.
 #include <vector>
