@@ -209,14 +209,34 @@ const VerifyReport& JobVerifier::finish(std::vector<out::StatValue>& stats) {
 void JobVerifier::write_worst(out::ClJob& cl) {
   cl.set_observer(nullptr);
   attached_ = nullptr;
+  write_verify_worst(cl, report_);
+}
+
+void write_verify_worst(out::ClJob& cl, const VerifyReport& report) {
   std::vector<double> rows;
-  for (const VerifyViolation& v : report_.worst)
+  for (const VerifyViolation& v : report.worst)
     rows.insert(rows.end(),
                 {static_cast<double>(v.move), static_cast<double>(v.path), v.from.x(), v.from.y(),
                  v.from.z(), v.to.x(), v.to.y(), v.to.z(), v.amount, static_cast<double>(v.kind)});
-  cl.write_array("verify", "worst", rows, 10, "mm",
+  cl.write_array("verify", "worst", rows, kWorstColumns, "mm",
                  "worst violations, largest first: move, path, x0, y0, z0, x1, y1, z1, amount, "
                  "kind (0 wall, 1 floor, 2 mesh, 3 rapid, 4 bottom)");
+}
+
+std::vector<VerifyViolation> violations_from_rows(std::span<const double> rows) {
+  std::vector<VerifyViolation> out;
+  for (std::size_t r = 0; r + kWorstColumns <= rows.size(); r += kWorstColumns) {
+    const double* v = rows.data() + r;
+    VerifyViolation w;
+    w.move = static_cast<std::uint64_t>(v[0]);
+    w.path = static_cast<std::uint32_t>(v[1]);
+    w.from = Vec3(v[2], v[3], v[4]);
+    w.to = Vec3(v[5], v[6], v[7]);
+    w.amount = v[8];
+    w.kind = static_cast<ViolationKind>(static_cast<std::uint8_t>(v[9]));
+    out.push_back(w);
+  }
+  return out;
 }
 
 std::unique_ptr<JobVerifier> profile_verifier(const JobSpec& job) {

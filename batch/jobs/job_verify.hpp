@@ -7,6 +7,7 @@
 // failed its verification (a gouge deeper than tol::kVerifyGouge).
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,12 @@ JobSpec stored_job_spec(const std::string& operation, const std::string& input_p
 // Statistics of a job's chord guard (engine/chord_guard.hpp): chord_guard_moves,
 // chord_guard_lifted, chord_guard_points_added, chord_guard_max_lift, chord_guard_s.
 void push_guard_stats(const ChordGuard& guard, std::vector<out::StatValue>& stats);
+
+// A report's worst violations as /jobs/<job>/verify/worst (float64, kWorstColumns per row:
+// move, path, x0, y0, z0, x1, y1, z1, amount, kind), and back from those rows.
+inline constexpr std::size_t kWorstColumns = 10;
+void write_verify_worst(out::ClJob& cl, const VerifyReport& report);
+std::vector<VerifyViolation> violations_from_rows(std::span<const double> rows);
 
 // "move 12 ... cuts 0.01 mm into the wall" when the job fails its verification, else "".
 std::string verification_failure(const VerifyReport& report);
