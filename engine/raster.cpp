@@ -38,6 +38,8 @@ std::string validate(const RasterParams& p) {
   if (os.tellp() == 0 && p.chunk_lines == 0) os << "chunk_lines must be >= 1";
   if (os.tellp() == 0 && !(p.strip_height >= 0 && p.bin_width >= 0))
     os << "strip_height and bin_width must be >= 0 (0 = automatic)";
+  if (os.tellp() == 0 && !(p.bands >= 1 && p.band < p.bands))
+    os << "band must be < bands, and bands >= 1 (got band " << p.band << " of " << p.bands << ")";
   return os.str();
 }
 
@@ -122,7 +124,6 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
   const std::size_t n_lines = raster_sample_count(v1 - v0, p.interval);
   const std::size_t n_samples = raster_sample_count(u1 - u0, p.step);
   const double u_last = u0 + static_cast<double>(n_samples - 1) * p.step;
-  st.lines = n_lines;
 
   const double R = cutter.radius;
   const double strip_h = p.strip_height > 0 ? p.strip_height : std::max(p.interval, 0.5 * R);
@@ -190,18 +191,26 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
     }
   };
 
+  // A band: strips band, band + bands, ... (k-th: band + k * bands); lines of the band.
+  const std::size_t band_strips = strips > p.band ? (strips - p.band - 1) / p.bands + 1 : 0;
+  const auto strip_of = [&](std::size_t k) { return p.band + k * p.bands; };
+  for (std::size_t k = 0; k < band_strips; ++k)
+    st.lines +=
+        std::min(n_lines, (strip_of(k) + 1) * lines_per_strip) - strip_of(k) * lines_per_strip;
+
   // Chunks of whole strips. While the calling thread hands chunk k to the sink (the HDF5
   // writer, which must stay on one thread), the workers compute chunk k+1; the sink still
   // sees the chunks in order, so the output does not depend on the thread count.
   const std::size_t strips_per_chunk = std::max<std::size_t>(1, p.chunk_lines / lines_per_strip);
   std::vector<StripOutput> outs;
   auto compute_chunk = [&](std::size_t c0, ClChunk& merged) {
-    const std::size_t c1 = std::min(strips, c0 + strips_per_chunk);
+    const std::size_t c1 = std::min(band_strips, c0 + strips_per_chunk);
     outs.assign(c1 - c0, StripOutput{});
-    par::for_each(c1 - c0, 1, [&](std::size_t k) { run_strip(c0 + k, outs[k]); });
+    par::for_each(c1 - c0, 1, [&](std::size_t k) { run_strip(strip_of(c0 + k), outs[k]); });
     merged.clear();
     for (StripOutput& o : outs) {
       merged.append(o.chunk);
+      st.strip_paths.push_back(static_cast<std::int64_t>(o.chunk.path_sizes.size()));
       st.cut_points += o.cut;
       st.link_points += o.link;
       st.adaptive_points += o.adaptive;
@@ -209,9 +218,10 @@ RasterStats run_raster(const TriangleMesh& mesh, const Cutter& cutter, const Ras
     }
   };
   stream_chunks<ClChunk>(
-      strips, strips_per_chunk, compute_chunk, sink,
+      band_strips, strips_per_chunk, compute_chunk, sink,
       [&](std::size_t done) {
-        if (control.progress) control.progress(std::min(n_lines, done * lines_per_strip), n_lines);
+        if (control.progress)
+          control.progress(std::min<std::uint64_t>(st.lines, done * lines_per_strip), st.lines);
       },
       control, st.compute_s, st.sink_s);
   return st;

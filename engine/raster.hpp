@@ -17,6 +17,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/cl_chunk.hpp"
 #include "engine/run_control.hpp"
@@ -39,6 +40,13 @@ struct RasterParams {
   std::uint32_t chunk_lines = 64;               // lines per streamed chunk (memory vs overhead)
   double strip_height = 0;                      // mm of lines sharing one candidate set; 0 = auto
   double bin_width = 0;                         // mm of x-bins within a strip; 0 = auto
+  // Only band `band` of `bands` (a job split across MPI ranks, batch/jobs/split_job.hpp):
+  // strips band, band + bands, band + 2 * bands, ... of the raster's strips (every bands-th
+  // one, so that every band has its share of the part), each line with its link to the next
+  // as in the whole raster. The whole raster's paths are the bands' strips taken in turn
+  // (RasterStats::strip_paths says where each strip ends). Not a user parameter (not in the
+  // params JSON).
+  std::uint32_t band = 0, bands = 1;
 };
 
 // Samples at origin + k * spacing, k = 0 .. floor(extent / spacing): their count.
@@ -48,7 +56,7 @@ std::size_t raster_sample_count(double extent, double spacing);
 std::string validate(const RasterParams& params);
 
 struct RasterStats {
-  std::uint64_t lines = 0;
+  std::uint64_t lines = 0;            // lines computed (of the band, when split)
   std::uint64_t cut_points = 0;       // points on cut paths (incl. adaptive ones)
   std::uint64_t link_points = 0;      // points on link paths
   std::uint64_t adaptive_points = 0;  // points inserted by adaptive sampling
@@ -60,6 +68,7 @@ struct RasterStats {
   double index_s = 0;            // facet table + strip buckets
   double compute_s = 0;          // drop-cutting (wall time of the chunk computations)
   double sink_s = 0;             // time spent in sink (writing), overlapped with compute
+  std::vector<std::int64_t> strip_paths;  // paths of each strip computed, in order
 };
 
 // Throws Cancelled if control.cancel is set; std::invalid_argument for bad params.

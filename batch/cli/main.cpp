@@ -150,7 +150,7 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
   };
   obs.job_finished = [&](std::size_t i, const jobs::JobOutcome&) { bar.finished(i); };
   std::vector<jobs::JobOutcome> outcomes;
-  std::vector<int> ranks;  // where each job ran (ncpath-mpi)
+  std::vector<std::string> where;  // where each job ran (ncpath-mpi)
   try {
 #ifdef NCPATH_MPI
     std::size_t done = 0;
@@ -164,7 +164,7 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (rank != 0) return 0;
     outcomes = std::move(r.outcomes);
-    ranks = std::move(r.rank);
+    where = std::move(r.where);
 #else
     outcomes = jobs::run_batch(batch, obs);
 #endif
@@ -176,17 +176,17 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
   int failed = 0;
   for (std::size_t i = 0; i < outcomes.size(); ++i) {
     const jobs::JobOutcome& o = outcomes[i];
-    const std::string where = ranks.empty() ? "" : " on rank " + std::to_string(ranks[i]);
+    const std::string on = where.empty() ? "" : " on " + where[i];
     if (o.status == "ok") {
       std::printf("  %-24s ok      %spoints in %.2f s (%spoints/s computing), peak RSS %.0f MB%s\n",
                   o.name.c_str(), human(static_cast<double>(o.points)).c_str(), o.seconds,
                   human(o.compute_s > 0 ? o.points / o.compute_s : 0).c_str(),
-                  o.peak_rss_bytes / 1048576.0, where.c_str());
+                  o.peak_rss_bytes / 1048576.0, on.c_str());
       if (!o.message.empty()) std::printf("  %-24s %s\n", "", o.message.c_str());
     } else {
       ++failed;
       std::printf("  %-24s %s: %s%s\n", o.name.c_str(), o.status.c_str(), o.message.c_str(),
-                  where.c_str());
+                  on.c_str());
     }
   }
   std::printf("ncpath: %zu job(s), %zu ok, %d failed -> %s\n", outcomes.size(),

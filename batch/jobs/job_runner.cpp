@@ -158,6 +158,9 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
     stats.push_back({"scan_y_min", st.rect[1], "mm"});
     stats.push_back({"scan_x_max", st.rect[2], "mm"});
     stats.push_back({"scan_y_max", st.rect[3], "mm"});
+    if (job.raster.bands > 1)  // a band of a split job: how join_bands interleaves the bands
+      cl.write_array("band", "strip_paths", st.strip_paths, 0, "",
+                     "paths of each strip of this band, in order (split_job.hpp)");
   } else {
     const PointList pts = read_points_csv(job.points);
     const DropPointsStats st =

@@ -90,6 +90,35 @@ TEST(MpiCli, RanksWriteWhatOneProcessWrites) {
     EXPECT_EQ(entry.path().string().find(".spool-"), std::string::npos) << entry.path();
 }
 
+// One raster job, more than its share of the batch, runs as one band per rank
+// (batch/jobs/split_job.hpp): the file holds what one process writes, the statistics that
+// count are the same, and the job says which ranks ran its bands.
+TEST(MpiCli, OneLargeRasterJobSplitsAcrossTheRanks) {
+  const auto dir = fixture_dir();
+  const std::string job = "raster --mesh " + (dir / "part.stl").string() +
+                          " --tool ball:3 --interval 0.2 --step 0.05 --margin 2 --quiet"
+                          " --threads 1 --out ";
+  const CmdResult one = test::ncpath(job + (dir / "one.h5").string());
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  h5::Id whole = h5::open_read(dir / "one.h5");
+  const auto stat = [](hid_t f, const std::string& name) {
+    return h5::read_all<std::int64_t>(f, "/jobs/raster/stats/" + name, H5T_NATIVE_INT64).at(0);
+  };
+  for (int ranks : {2, 3}) {
+    SCOPED_TRACE(testing::Message() << ranks << " ranks");
+    const auto out = dir / ("np" + std::to_string(ranks) + ".h5");
+    const CmdResult r = mpirun(ranks, job + out.string());
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find(std::to_string(ranks) + " bands on ranks "), std::string::npos)
+        << r.output;
+    EXPECT_TRUE(h5::same_content(dir / "one.h5", out, statistic));
+    h5::Id f = h5::open_read(out);
+    EXPECT_EQ(stat(f, "mpi_bands"), ranks);
+    for (const char* name : {"points", "lines", "chord_guard_lifted", "verify_moves"})
+      EXPECT_EQ(stat(f, name), stat(whole, name)) << name;
+  }
+}
+
 // The pid of the ncpath-mpi process of MPI rank `rank` whose command line holds `marker`,
 // or 0 when there is none (yet).
 pid_t rank_pid(int rank, const std::string& marker) {
