@@ -1,6 +1,7 @@
 #pragma once
 // Test helpers: run the ncpath program built next to the tests and read what it wrote.
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,12 @@
 #include <string>
 
 #include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include "batch/io/stl_writer.hpp"
+#include "tests/batch/output/h5_read.hpp"
+#include "tests/support/meshes.hpp"
 
 namespace ncpath::test {
 
@@ -52,6 +59,17 @@ inline void write_seven_job_batch(const std::filesystem::path& dir) {
       << "tool = \"ball:6\"\nparams = { interval = 0.5 }\n"
       << "[[job]]\nname = \"raster2\"\ninput = \"part.stl\"\ntool = \"flat:3\"\n"
       << "transform = { scale = 1.5 }\nparams = { interval = 0.5, step = 0.25 }\n";
+}
+
+// A clean output folder for the running test, `prefix` + its name, holding part.stl: a wavy
+// height field over 40 x 40 mm.
+inline std::filesystem::path part_dir(const std::string& prefix) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const auto dir = out::test::out_dir(prefix + (info ? info->name() : "none"));
+  const TriangleMesh m = height_field(
+      20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
+  io::write_binary_stl(dir / "part.stl", m);
+  return dir;
 }
 
 inline std::string slurp(const std::filesystem::path& p) {

@@ -23,11 +23,7 @@ using test::slurp;
 
 // A folder of its own per test: ctest runs the tests of this binary in parallel processes.
 std::filesystem::path fixture_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const auto dir = h5::out_dir(std::string("cli_") + (info ? info->name() : "none"));
-  const TriangleMesh m = test::height_field(
-      20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
-  io::write_binary_stl(dir / "part.stl", m);
+  const auto dir = test::part_dir("cli_");
   std::ofstream(dir / "xy.csv") << "# x,y\n1,1\n20,20\n\n500,500\n";
   return dir;
 }

@@ -31,14 +31,7 @@ CmdResult mpirun(int ranks, const std::string& args) {
                            args);
 }
 
-std::filesystem::path fixture_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const auto dir = h5::out_dir(std::string("mpi_") + (info ? info->name() : "none"));
-  const TriangleMesh m = test::height_field(
-      20, 40, [](double x, double y) { return 2 + std::sin(x / 5) * std::cos(y / 4); });
-  io::write_binary_stl(dir / "part.stl", m);
-  return dir;
-}
+std::filesystem::path fixture_dir() { return test::part_dir("mpi_"); }
 
 // Statistics differ: timings, and what a job shared with others (mesh_shared,
 // conditioned_shared, ...), which depends on the jobs that ran in the same process.
