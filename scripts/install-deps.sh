@@ -42,6 +42,8 @@ EXTRA=(
   libpolyclipping-dev  # tests/kernels: Clipper as an independent offset oracle (tests only)
   openmpi-bin          # mpirun for ncpath-mpi (batch/CMakeLists.txt) and its tests
   libopenmpi-dev       # batch/CMakeLists.txt: find_package(MPI COMPONENTS CXX), ncpath-mpi
+  libcairo2-dev        # batch/CMakeLists.txt: previews and the report (pkg-config cairo)
+  chromium             # tests/batch/preview_test.cpp: the report opened in headless Chromium
 )
 # shellcheck disable=SC2206  # word splitting of the env var is intended
 EXTRA+=(${NCPATH_EXTRA_PACKAGES:-})

@@ -38,9 +38,12 @@ void add_gcode(CLI::App* app, GcodeCli& g) {
                   "8th move (sample) or none (off)")
       ->check(CLI::IsMember({"off", "sample", "full"}))
       ->capture_default_str();
+  app->add_option("--preview", g.preview,
+                  "Also draw the job (the part from above and its paths) into this .png or .svg");
 }
 
 void apply_gcode(const GcodeCli& g, jobs::JobSpec& j) {
+  j.preview = g.preview;
   if (std::string e = jobs::parse_verify_mode(g.verify, j.verify); !e.empty() && j.error.empty()) {
     j.error = "--verify " + e;
     j.error_status = "invalid_parameter";

@@ -29,9 +29,10 @@ struct GcodeCli {
   out::GcodeParams params;
   std::optional<double> safe_z;
   std::string verify = "full";  // --verify: off, sample or full (every command has it)
+  std::string preview;          // --preview: a picture of the job (every command has it)
 };
 
-// --gcode, --dialect, --feed, --plunge-feed, --spindle, --safe-z, and --verify.
+// --gcode, --dialect, --feed, --plunge-feed, --spindle, --safe-z, and --verify and --preview.
 void add_gcode(CLI::App* app, GcodeCli& g);
 void apply_gcode(const GcodeCli& g, jobs::JobSpec& j);
 

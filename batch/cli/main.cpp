@@ -11,6 +11,7 @@
 #include "batch/cli/cli_options.hpp"
 #include "batch/cli/huge_pages.hpp"
 #include "batch/cli/mesh_op_cli.hpp"
+#include "batch/cli/preview_cli.hpp"
 #include "batch/cli/progress_bar.hpp"
 #include "batch/cli/verify_cli.hpp"
 #include "batch/jobs/batch_schedule.hpp"
@@ -191,6 +192,7 @@ int run(const jobs::BatchSpec& batch, bool quiet) {
   }
   std::printf("ncpath: %zu job(s), %zu ok, %d failed -> %s\n", outcomes.size(),
               outcomes.size() - failed, failed, batch.output.string().c_str());
+  if (!write_batch_pictures(batch)) return 2;
   return failed == 0 ? 0 : 1;
 }
 
@@ -349,11 +351,20 @@ int main(int argc, char** argv) {
                    "file; default 3/4 of the memory available)");
   runc->add_flag("-q,--quiet", batch_quiet, "No progress bar");
 
+  std::string batch_report;
+  runc->add_option("--report", batch_report,
+                   "Also write an HTML page of the results here (overrides the file's 'report')");
+
   VerifyCli verify_cli;
   CLI::App* verifyc = add_verify_command(app, verify_cli);
+  PictureCli preview_cli, report_cli;
+  CLI::App* previewc = add_preview_command(app, preview_cli);
+  CLI::App* reportc = add_report_command(app, report_cli);
 
   CLI11_PARSE(app, argc, argv);
   if (verifyc->parsed()) return run_verify_command(verify_cli);
+  if (previewc->parsed()) return run_preview_command(preview_cli);
+  if (reportc->parsed()) return run_report_command(report_cli);
 
   jobs::BatchSpec batch;
   bool quiet = false;
@@ -434,6 +445,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (!batch_out.empty()) batch.output = batch_out;
+    if (!batch_report.empty()) batch.report = batch_report;
     if (batch_threads >= 0) batch.threads = batch_threads;
     if (batch_concurrent >= 0) batch.concurrent_jobs = batch_concurrent;
     if (!batch_memory.empty())

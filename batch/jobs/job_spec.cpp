@@ -108,6 +108,8 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
   std::string verify;
   if (k.string("verify", verify))
     if (std::string e = parse_verify_mode(verify, job.verify); !e.empty()) k.fail("verify", e);
+  std::string preview;
+  if (k.string("preview", preview)) job.preview = (base / preview).lexically_normal();
   if (op == "raster")
     job.operation = Operation::kRaster;
   else if (op == "drop")
@@ -267,6 +269,8 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
   Keys k(root, "");
   std::string out;
   if (k.string("output", out)) b.output = (base_dir / out).lexically_normal();
+  std::string report;
+  if (k.string("report", report)) b.report = (base_dir / report).lexically_normal();
   // A whole number >= 0 into out, or the key named.
   auto count = [&k](const char* key, int& out) {
     double v;

@@ -9,6 +9,7 @@
 //   threads = 0                  # 0 = all cores
 //   concurrent_jobs = 0          # jobs at the same time at most; 0 = as many as threads
 //   memory_limit = "16G"         # budget for jobs at the same time; default 3/4 of free
+//   report  = "out/demo.html"    # optional: an HTML page of the results (docs/cli.md)
 //   [[job]]
 //   name      = "bunny-ball5"     # unique; default "job<N>"
 //   operation = "raster"          # "raster", "scan", "zlevel", "pencil", "fillet", "drop",
@@ -18,6 +19,7 @@
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
 //   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
 //   params    = { interval = 0.5, step = 0.1 }     # see docs/cli.md for every key
+//   preview   = "bunny.png"       # optional: a picture of the job (.png or .svg)
 //   gcode     = { path = "bunny.ngc", dialect = "linuxcnc", feed = 800, plunge_feed = 200,
 //                 spindle_rpm = 12000, safe_z = 5, arc_tolerance = 0.005 }   # optional
 //
@@ -137,12 +139,14 @@ struct JobSpec {
   // their rapid paths in the HDF5 file, with or without G-code.
   std::optional<double> gcode_safe_z;
   VerifyMode verify = VerifyMode::kFull;  // key `verify` (job, or the batch's default)
+  std::filesystem::path preview;          // key `preview`: draw the job here when the batch ends
   std::string error;         // non-empty: the spec is invalid; status + message below
   std::string error_status;  // "invalid_parameter"
 };
 
 struct BatchSpec {
   std::filesystem::path output;
+  std::filesystem::path report;  // key `report`: the batch's HTML page, written at its end
   int threads = 0;
   int concurrent_jobs = 0;         // 0 = as many as threads (batch_schedule.hpp)
   std::uint64_t memory_limit = 0;  // bytes; 0 = default_memory_limit()
