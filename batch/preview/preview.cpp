@@ -238,6 +238,20 @@ void draw_worst(cairo_t* cr, const std::vector<VerifyViolation>& worst, const Fr
   }
 }
 
+// `s` shortened (at a character boundary) and ended with "..." to fit `px` pixels in the
+// current font.
+std::string fit_text(cairo_t* cr, std::string s, double px) {
+  cairo_text_extents_t e;
+  cairo_text_extents(cr, s.c_str(), &e);
+  while (e.x_advance > px && s.size() > 3) {
+    std::size_t n = s.size() * 9 / 10;
+    while (n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;  // UTF-8 follower
+    s = s.substr(0, n) + "...";
+    cairo_text_extents(cr, s.c_str(), &e);
+  }
+  return s;
+}
+
 std::string stat_text(const std::vector<out::StatValue>& stats, const char* name,
                       const char* format) {
   for (const out::StatValue& s : stats)
@@ -254,7 +268,7 @@ std::string stat_text(const std::vector<out::StatValue>& stats, const char* name
   return "";
 }
 
-void draw_title(cairo_t* cr, const JobData& d, const Picture& s, const Part& part) {
+void draw_title(cairo_t* cr, const JobData& d, const Picture& s, const Part& part, int w) {
   const bool ok = d.job.status == "ok";
   set(cr, {0.1, 0.1, 0.1});
   text(cr, kMarginPx, 24, d.job.name + "  ·  " + d.job.operation + "  ·  ", 18, true);
@@ -276,7 +290,8 @@ void draw_title(cairo_t* cr, const JobData& d, const Picture& s, const Part& par
   std::string third = d.job.message;
   if (!part.problem.empty())
     third += (third.empty() ? "" : "  ·  ") + ("part not drawn: " + part.problem);
-  if (third.size() > 180) third = third.substr(0, 177) + "...";
+  cairo_set_font_size(cr, 12);
+  third = fit_text(cr, third, w - 2 * kMarginPx);
   set(cr, ok ? Rgb{0.4, 0.4, 0.4} : kRapidColour);
   text(cr, kMarginPx, 60, third, 12);
 }
@@ -305,8 +320,9 @@ void draw_scale_bar(cairo_t* cr, const Frame& frame, int w, int h) {
   text(cr, x, y + 16, buf, 12);
 }
 
+// The legend, right-aligned (about 530 pixels), clear of the scale bar on its left.
 void draw_legend(cairo_t* cr, const Picture& s, bool worst, int w, int h) {
-  double x = w / 2.0 - 40;
+  double x = std::max(kMarginPx + (w - 2 * kMarginPx) / 4 + 40, w - kMarginPx - 530);
   const double y = h - 30;
   for (int k = 0; k < 40; ++k) {
     set(cr, cut_colour(k / 39.0));
@@ -317,7 +333,7 @@ void draw_legend(cairo_t* cr, const Picture& s, bool worst, int w, int h) {
   std::snprintf(buf, sizeof buf, "cut, z %.1f to %.1f mm", s.z_lo, s.z_hi);
   set(cr, {0.1, 0.1, 0.1});
   text(cr, x + 86, y + 1, buf, 12);
-  x += 260;
+  x += 240;
   auto line_item = [&](const Rgb& c, bool dashed, const char* label) {
     const double dash[] = {5, 3};
     cairo_set_dash(cr, dash, dashed ? 2 : 0, 0);
@@ -330,7 +346,7 @@ void draw_legend(cairo_t* cr, const Picture& s, bool worst, int w, int h) {
     cairo_set_dash(cr, nullptr, 0, 0);
     set(cr, {0.1, 0.1, 0.1});
     text(cr, x + 30, y + 1, label, 12);
-    x += 100;
+    x += 80;
   };
   line_item(kLinkColour, false, "link");
   line_item(kRapidColour, true, "rapid");
@@ -374,7 +390,7 @@ Picture draw(cairo_surface_t* surface, const std::filesystem::path& file, const 
   cairo_rectangle(cr, 0, 0, w, kTitlePx);
   cairo_rectangle(cr, 0, h - kFooterPx, w, kFooterPx);
   cairo_fill(cr);
-  draw_title(cr, d, pic, part);
+  draw_title(cr, d, pic, part, w);
   draw_scale_bar(cr, pic.frame, w, h);
   draw_legend(cr, pic, !d.worst.empty(), w, h);
   check(cairo_status(cr), "drawing");

@@ -14,6 +14,7 @@
 
 #include "batch/io/stl_writer.hpp"
 #include "batch/jobs/job_runner.hpp"
+#include "batch/jobs/job_verify.hpp"
 #include "batch/output/cl_reader.hpp"
 #include "batch/preview/preview.hpp"
 #include "batch/preview/report.hpp"
@@ -159,6 +160,45 @@ TEST(Preview, APocketShowsItsIslandsAndItsLoops) {
              0.5 * Pixels::distance(floor, want) + 0.06;
   }
   EXPECT_EQ(drawn, 24);
+}
+
+// A job whose verifier found gouges (written here as the verifier writes them): each of its
+// worst moves is circled in red, 10 pixels around the move's middle; the picture says why
+// the part is missing (the job's attributes name no tool).
+TEST(Preview, TheVerifiersWorstMovesAreCircled) {
+  const auto dir = h5::out_dir("preview_worst");
+  {
+    out::ClFile f(dir / "g.h5", "test");
+    out::ClJob cl = f.begin_job("g", out::JobInfo{"raster", "none.stl", "", "{}", "{}"});
+    ClChunk c;
+    for (int i = 0; i <= 100; ++i) {
+      c.xyz.insert(c.xyz.end(), {double(i), 0.0, 0.0, double(i), 50.0, 0.0});  // x = i, up
+      c.contact.insert(c.contact.end(), {out::kContactFacet, out::kContactFacet});
+      c.path_sizes.push_back(2);
+      c.path_kinds.push_back(static_cast<std::uint8_t>(PathKind::kCut));
+    }
+    cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
+    VerifyReport r;
+    r.add({7, 3, Vec3(20, 10, 0), Vec3(20, 20, 0), 0.5, ViolationKind::kMesh});
+    r.add({9, 4, Vec3(70, 30, 0), Vec3(70, 40, 0), 0.2, ViolationKind::kMesh});
+    jobs::write_verify_worst(cl, r);
+    cl.set_status("failed_verification", "failed verification: move 7 ...");
+    cl.close();
+    f.close();
+  }
+  const Picture pic = preview_png(dir / "g.h5", "g", Options{800, 600});
+  const Pixels px(pic.png);
+  for (const Vec2& mid : {Vec2(20, 15), Vec2(70, 35)}) {
+    const Vec2 m = pic.frame.pixel(mid.x(), mid.y());
+    int red = 0;
+    for (int k = 0; k < 36; ++k) {
+      const double a = 2 * M_PI * k / 36;
+      red += px.nearest(m + 10 * Vec2(std::cos(a), std::sin(a)), kRapidColour) < 0.25;
+    }
+    EXPECT_GE(red, 30) << "circle at " << mid.transpose();
+    // Inside the circle, away from its ring and the paths: not red.
+    EXPECT_GT(Pixels::distance(px.at(int(m.x()) + 4, int(m.y()) + 4), kRapidColour), 0.5);
+  }
 }
 
 TEST(Preview, SvgHasTheSameDrawingAsVectors) {
