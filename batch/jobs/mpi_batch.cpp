@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -31,7 +32,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr int kTagAsk = 1;     // rank -> 0: give me a job (no data)
-constexpr int kTagJob = 2;     // 0 -> rank: the job's index, or kNoJob: stop
+constexpr int kTagJob = 2;     // 0 -> rank: a TaskMessage; its task kNoJob: stop
 constexpr int kTagResult = 3;  // rank -> 0: the outcome (JSON), then its file's bytes
 constexpr int kTagBytes = 4;
 constexpr std::int64_t kNoJob = -1;
@@ -50,11 +51,12 @@ struct Task {
   std::uint32_t band = 0, bands = 0;
 };
 
-// The batch's tasks, the same on every rank: a splittable job (split_job.hpp) whose estimate
-// is more than its share of the batch (Σ / ranks) becomes one band per rank, as it alone would
+// The batch's tasks: a splittable job (split_job.hpp) whose estimate (estimate_job_bytes) is
+// more than its share of the batch (Σ / ranks) becomes one band per rank, as it alone would
 // hold up the end of the batch; every other job is one task.
-std::vector<Task> batch_tasks(const BatchSpec& batch, int ranks,
-                              const std::vector<std::uint64_t>& est) {
+std::vector<Task> batch_tasks(const BatchSpec& batch, int ranks) {
+  std::vector<std::uint64_t> est;
+  for (const JobSpec& j : batch.jobs) est.push_back(estimate_job_bytes(j));
   const std::uint64_t total = std::accumulate(est.begin(), est.end(), std::uint64_t{0});
   const auto bands = static_cast<std::uint32_t>(ranks);
   std::vector<Task> tasks;
@@ -64,12 +66,6 @@ std::vector<Task> batch_tasks(const BatchSpec& batch, int ranks,
     for (std::uint32_t b = 0; split && b < bands; ++b) tasks.push_back({i, b, bands});
   }
   return tasks;
-}
-
-std::vector<Task> batch_tasks(const BatchSpec& batch, int ranks) {
-  std::vector<std::uint64_t> est;
-  for (const JobSpec& j : batch.jobs) est.push_back(estimate_job_bytes(j));
-  return batch_tasks(batch, ranks, est);
 }
 
 // Task indices in hand-out order: the largest estimate first (a band: its job's over the
@@ -147,16 +143,27 @@ std::string read_bytes(const fs::path& path) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-// A rank other than 0: asks for jobs until told to stop, runs each, sends back its outcome
+// A task as rank 0 sends it: its index, job, band and bands. The task list is rank 0's alone
+// (its estimates read the input files, which another rank may see otherwise).
+using TaskMessage = std::array<std::int64_t, 4>;
+TaskMessage task_message(std::int64_t index, const std::vector<Task>& tasks) {
+  if (index < 0) return {kNoJob, 0, 0, 0};
+  const Task& t = tasks[std::size_t(index)];
+  return {index, std::int64_t(t.job), t.band, t.bands};
+}
+
+// A rank other than 0: asks for tasks until told to stop, runs each, sends back its outcome
 // and its CL file.
-void work(const BatchSpec& batch, int rank, const std::vector<Task>& tasks) {
+void work(const BatchSpec& batch, int rank) {
   for (;;) {
     MPI_Send(nullptr, 0, MPI_BYTE, 0, kTagAsk, MPI_COMM_WORLD);
-    std::int64_t job = kNoJob;
-    MPI_Recv(&job, 1, MPI_INT64_T, 0, kTagJob, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    TaskMessage m{kNoJob, 0, 0, 0};
+    MPI_Recv(m.data(), 4, MPI_INT64_T, 0, kTagJob, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    const std::int64_t job = m[0];
     if (job < 0) return;
+    const Task task{std::size_t(m[1]), std::uint32_t(m[2]), std::uint32_t(m[3])};
     const fs::path path = task_file(std::size_t(job));
-    const JobOutcome o = run_alone(batch, tasks[std::size_t(job)], path, rank);
+    const JobOutcome o = run_alone(batch, task, path, rank);
     const std::string bytes = read_bytes(path);
     std::error_code ec;
     fs::remove(path, ec);
@@ -213,7 +220,8 @@ class Coordinator {
       if (st.MPI_TAG == kTagAsk) {
         MPI_Recv(nullptr, 0, MPI_BYTE, st.MPI_SOURCE, kTagAsk, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         const std::int64_t task = take();
-        MPI_Send(&task, 1, MPI_INT64_T, st.MPI_SOURCE, kTagJob, MPI_COMM_WORLD);
+        const TaskMessage m = task_message(task, tasks_);
+        MPI_Send(m.data(), 4, MPI_INT64_T, st.MPI_SOURCE, kTagJob, MPI_COMM_WORLD);
         stopped += task < 0;
       } else if (st.MPI_TAG == kTagResult) {
         receive_result(st, file);
@@ -428,7 +436,7 @@ MpiBatchResult run_batch_mpi(const BatchSpec& batch, const BatchObserver& observ
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   if (rank != 0) {
-    work(batch, rank, batch_tasks(batch, size));
+    work(batch, rank);
     return {};
   }
   std::signal(SIGTERM, on_stop_signal);

@@ -14,6 +14,7 @@
 #include "batch/output/cl_reader.hpp"
 #include "batch/preview/preview_part.hpp"
 #include "engine/verify_report.hpp"
+#include "kernels/geom/tolerance.hpp"
 
 namespace ncpath::preview {
 
@@ -114,7 +115,8 @@ Frame fit(const Part& part, const PathSummary& paths, int w, int h) {
     first = false;
   }
   const double aw = w - 2 * kMarginPx, ah = h - kTitlePx - kFooterPx;
-  const double dx = std::max(1e-6, x_hi - x_lo), dy = std::max(1e-6, y_hi - y_lo);
+  const double dx = std::max(tol::kPreviewMinExtent, x_hi - x_lo),
+               dy = std::max(tol::kPreviewMinExtent, y_hi - y_lo);
   Frame f;
   f.scale = std::min(aw / dx, ah / dy);
   f.x0 = x_lo;
@@ -170,7 +172,7 @@ void draw_paths(cairo_t* cr, const std::filesystem::path& file, const std::strin
   if (s.points == 0) return;
   std::vector<std::vector<float>> cut(kRampBins);
   std::vector<float> link, rapid;
-  const double z_span = std::max(1e-9, s.z_hi - s.z_lo);
+  const double z_span = std::max(tol::kPreviewMinZSpan, s.z_hi - s.z_lo);
   out::read_paths(file, job, [&](const ClChunk& c) {
     std::size_t i = 0;
     for (std::size_t k = 0; k < c.path_sizes.size(); ++k) {

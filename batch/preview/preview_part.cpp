@@ -11,6 +11,7 @@
 #include "batch/jobs/profile_input.hpp"
 #include "kernels/curves/nurbs.hpp"
 #include "kernels/curves/segment.hpp"
+#include "kernels/geom/tolerance.hpp"
 #include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::preview {
@@ -111,7 +112,7 @@ std::vector<Rgb> height_map(const TriangleMesh& mesh, const Frame& frame, int w,
                           -std::numeric_limits<double>::infinity());
   std::vector<Rgb> out(top.size(), kBackground);
   const Aabb3 box = bounding_box(mesh);
-  const double z_span = std::max(1e-9, box.hi.z() - box.lo.z());
+  const double z_span = std::max(tol::kPreviewMinZSpan, box.hi.z() - box.lo.z());
   for (const auto& f : mesh.facets) {
     const Vec3 &a = mesh.vertices[f[0]], &b = mesh.vertices[f[1]], &c = mesh.vertices[f[2]];
     Vec3 n = (b - a).cross(c - a);

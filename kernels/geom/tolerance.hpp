@@ -517,4 +517,10 @@ inline constexpr double kReachSlack = kSurfaceSlack;
 // on it.
 inline constexpr double kSweepSlack = 1e-7;
 
+// mm. Pictures (batch/preview/preview.hpp): the smallest extent a picture is fitted to, so
+// that a single point or a straight line still gets a finite scale; and the smallest height
+// range a colour ramp spans (a flat part or paths all at one height take its first colour).
+inline constexpr double kPreviewMinExtent = 1e-6;
+inline constexpr double kPreviewMinZSpan = 1e-9;
+
 }  // namespace ncpath::tol

@@ -547,7 +547,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
 
   // Pieces between consecutive splits; keep those on the boundary of U.
   std::vector<KeptPiece> kept;
-  classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, params, st, kept);
+  classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, st, kept);
   st.kept = kept.size();
   build_loops(el, lv, regions, act, kept, result);
   return result;

@@ -296,8 +296,8 @@ void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& r
 void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>& act,
                      const std::vector<Curve>& curves, const std::vector<Region>& regions,
                      const std::vector<Box4f>& rbox, const Grid& grid,
-                     const CellLists& region_cells, const Level& lv, const ZLevelParams& params,
-                     ZLevelStats& st, std::vector<KeptPiece>& kept);
+                     const CellLists& region_cells, const Level& lv, ZLevelStats& st,
+                     std::vector<KeptPiece>& kept);
 
 // ---- the known inside region (zlevel_inside.cpp, ZLevelInside in zlevel.hpp) ----
 
