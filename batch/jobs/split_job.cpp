@@ -121,8 +121,8 @@ struct Placement {
   std::uint64_t band_path = 0, band_move = 0, job_path = 0, job_move = 0;
 };
 
-// The band's paths as a job reader, and its strips' path counts (a job of one band: one
-// strip of every path).
+// The number of paths of each of the band's strips (band/strip_paths; a job of one band
+// that has none: all its `paths` as one strip).
 std::vector<double> strip_paths(const Band& band, const std::string& job, std::size_t bands,
                                 std::size_t paths) {
   if (auto a = out::read_float64_array(band.file, job, "band/strip_paths")) return a->data;
@@ -144,8 +144,8 @@ std::vector<std::vector<Placement>> interleave_paths(const std::vector<Band>& ba
     total += strips.back().size();
   }
   std::vector<std::vector<Placement>> placed(n);
-  std::vector<Placement> next(n);  // each band's next path and move
-  Placement job_next;
+  std::vector<Placement> next(n);  // each band's next path and move (band_path, band_move)
+  std::uint64_t job_path = 0, job_move = 0;
   ClChunk c;
   for (std::size_t s = 0; s < total; ++s) {
     const std::size_t b = s % n;
@@ -154,13 +154,12 @@ std::vector<std::vector<Placement>> interleave_paths(const std::vector<Band>& ba
     const auto count = static_cast<std::size_t>(strips[b][s / n]);
     readers[b]->read(next[b].band_path, count, c);
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
-    placed[b].push_back(
-        {next[b].band_path, next[b].band_move, job_next.band_path, job_next.band_move});
+    placed[b].push_back({next[b].band_path, next[b].band_move, job_path, job_move});
     const std::uint64_t moves = move_count(c);
     next[b].band_path += count;
     next[b].band_move += moves;
-    job_next.band_path += count;
-    job_next.band_move += moves;
+    job_path += count;
+    job_move += moves;
   }
   for (std::size_t b = 0; b < n; ++b)
     if (next[b].band_path != readers[b]->paths())
