@@ -173,24 +173,26 @@ void draw_paths(cairo_t* cr, const std::filesystem::path& file, const std::strin
   std::vector<std::vector<float>> cut(kRampBins);
   std::vector<float> link, rapid;
   const double z_span = std::max(tol::kPreviewMinZSpan, s.z_hi - s.z_lo);
+  // The stroke a move of `kind` between heights za and zb goes into.
+  auto strokes_of = [&](PathKind kind, double za, double zb) -> std::vector<float>& {
+    if (kind == PathKind::kLinkAtDepth) return link;
+    if (kind != PathKind::kCut) return rapid;
+    const double t = std::max(0.0, ((za + zb) / 2 - s.z_lo) / z_span);  // NaN z: 0
+    return cut[std::min<std::size_t>(kRampBins - 1, static_cast<std::size_t>(t * kRampBins))];
+  };
   out::read_paths(file, job, [&](const ClChunk& c) {
     std::size_t i = 0;
     for (std::size_t k = 0; k < c.path_sizes.size(); ++k) {
-      const auto kind = static_cast<PathKind>(c.path_kinds[k]);
       const std::size_t e = i + c.path_sizes[k];
+      if (e == i) continue;  // an empty path
+      const auto kind = static_cast<PathKind>(c.path_kinds[k]);
       Vec2 p = frame.pixel(c.xyz[3 * i], c.xyz[3 * i + 1]);
       double zp = c.xyz[3 * i + 2];
       for (++i; i < e; ++i) {
         const Vec2 q = frame.pixel(c.xyz[3 * i], c.xyz[3 * i + 1]);
         if ((q - p).norm() < kMinSegmentPx && i + 1 < e) continue;
         const double zq = c.xyz[3 * i + 2];
-        std::vector<float>& to =
-            kind == PathKind::kCut
-                ? cut[std::min<std::size_t>(
-                      kRampBins - 1, static_cast<std::size_t>(std::max(
-                                         0.0, ((zp + zq) / 2 - s.z_lo) / z_span * kRampBins)))]
-            : kind == PathKind::kLinkAtDepth ? link
-                                             : rapid;
+        std::vector<float>& to = strokes_of(kind, zp, zq);
         to.insert(to.end(), {float(p.x()), float(p.y()), float(q.x()), float(q.y())});
         p = q;
         zp = zq;

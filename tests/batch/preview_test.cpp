@@ -177,6 +177,8 @@ TEST(Preview, TheVerifiersWorstMovesAreCircled) {
       c.path_sizes.push_back(2);
       c.path_kinds.push_back(static_cast<std::uint8_t>(PathKind::kCut));
     }
+    c.path_sizes.push_back(0);  // an empty path, last: nothing to draw, nothing to read past
+    c.path_kinds.push_back(static_cast<std::uint8_t>(PathKind::kCut));
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
     VerifyReport r;
     r.add({7, 3, Vec3(20, 10, 0), Vec3(20, 20, 0), 0.5, ViolationKind::kMesh});
