@@ -85,37 +85,41 @@ void scan_plane(const Family& fam, double v, double u0, double u1, double floor_
   plane_curve(out.pieces, spans, out.curve);
 }
 
-// Polyline of the curve's segments clipped to [a, b], lifted (see discretise_segment).
+// Polyline of the curve's segments clipped to [a, b], lifted (see discretise_segment). A
+// segment's end point is emitted when the next one does not start there (across a hole of
+// the envelope, tol::kEnvelopeHole), so the tool crosses the hole at the higher height.
 void polyline_between(const Family& fam, const PlaneOut& plane, double a, double b,
                       double tolerance, std::vector<Vec2>& pts, std::vector<std::uint8_t>& contact) {
-  std::vector<Vec2> raw;
-  std::vector<double> lift;
-  std::vector<std::uint8_t> kinds;
-  const auto& segs = plane.curve.segments;
-  for (const CurveSegment& s : segs) {
+  std::vector<CurveSegment> clipped;
+  for (const CurveSegment& s : plane.curve.segments) {
     if (s.x1 < a || s.x0 > b || (s.vertical && (s.x0 <= a || s.x0 > b))) continue;
     CurveSegment c = s;
-    const SlicePiece& pc = plane.pieces[s.piece];
     if (!s.vertical) {
+      const SlicePiece& pc = plane.pieces[s.piece];
       c.x0 = std::max(s.x0, a);
       c.x1 = std::min(s.x1, b);
       if (!(c.x0 < c.x1)) continue;
       c.z0 = tip_z(pc, c.x0);
       c.z1 = tip_z(pc, c.x1);
     }
-    const std::size_t before = raw.size();
-    discretise_segment(pc, c, tolerance, raw, lift);
-    kinds.resize(raw.size(), contact_code(fam.el, pc.element));
-    (void)before;
+    clipped.push_back(c);
   }
-  // End point: the last segment's end (clipped).
-  for (auto it = segs.rbegin(); it != segs.rend(); ++it) {
-    if (it->vertical || it->x0 > b || it->x1 < a) continue;
-    const double x = std::min(it->x1, b);
-    raw.emplace_back(x, tip_z(plane.pieces[it->piece], x));
-    lift.push_back(0);
-    kinds.push_back(contact_code(fam.el, plane.pieces[it->piece].element));
-    break;
+  std::vector<Vec2> raw;
+  std::vector<double> lift;
+  std::vector<std::uint8_t> kinds;
+  for (std::size_t i = 0; i < clipped.size(); ++i) {
+    const CurveSegment& c = clipped[i];
+    const std::uint8_t code = contact_code(fam.el, plane.pieces[c.piece].element);
+    discretise_segment(plane.pieces[c.piece], c, tolerance, raw, lift);
+    const bool last = i + 1 == clipped.size();
+    if (last || clipped[i + 1].x0 != c.x1) {
+      // The end point: the curve's last point, or the near end of a hole's crossing.
+      if (!(last && c.vertical)) {
+        raw.emplace_back(c.x1, c.z1);
+        lift.push_back(0);
+      }
+    }
+    kinds.resize(raw.size(), code);
   }
   pts.resize(raw.size());
   for (std::size_t i = 0; i < raw.size(); ++i) {
@@ -123,6 +127,21 @@ void polyline_between(const Family& fam, const PlaneOut& plane, double a, double
     pts[i] = Vec2(raw[i].x(), raw[i].y() + l);
   }
   contact = std::move(kinds);
+}
+
+// Whether the cylinder section `pc` is a line over the segment: its middle within
+// tol::kScanFlatSection of the chord (an edge nearly parallel to the plane: the ellipse's
+// centre lies so far away that its record could not be evaluated to that accuracy).
+bool flat_section(const SlicePiece& pc, const CurveSegment& s) {
+  if (pc.kind != PieceKind::kCylinderEllipse || !(s.x1 > s.x0)) return false;
+  const double xm = 0.5 * (s.x0 + s.x1);
+  return std::abs(tip_z(pc, xm) - 0.5 * (s.z0 + s.z1)) <= tol::kScanFlatSection;
+}
+
+// Segment kind (PieceKind, or kScanSegmentVertical) and geometry as written.
+std::uint8_t segment_kind(const SlicePiece& pc, const CurveSegment& s) {
+  if (s.vertical) return kScanSegmentVertical;
+  return flat_section(pc, s) ? std::uint8_t(PieceKind::kCylinderLine) : std::uint8_t(pc.kind);
 }
 
 std::array<double, 5> segment_geometry(const SlicePiece& pc, const CurveSegment& s) {
@@ -134,7 +153,10 @@ std::array<double, 5> segment_geometry(const SlicePiece& pc, const CurveSegment&
   }
   double slope = 0, intercept = 0;
   SectionEllipse e;
-  if (line_of(pc, slope, intercept)) {
+  if (flat_section(pc, s)) {
+    slope = (s.z1 - s.z0) / (s.x1 - s.x0);
+    g = {slope, s.z0 - slope * s.x0, 0, 0, 0};
+  } else if (line_of(pc, slope, intercept)) {
     g = {slope, intercept - R, 0, 0, 0};
   } else if (pc.kind == PieceKind::kSphereArc) {
     const double d = pc.point.y() - pc.y0;
@@ -320,7 +342,7 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
         const SlicePiece& pc = plane.pieces[s.piece];
         ScanSegmentRecord rec;
         rec.path = path;
-        rec.kind = s.vertical ? kScanSegmentVertical : std::uint8_t(pc.kind);
+        rec.kind = segment_kind(pc, s);
         rec.element = element_ref(F.el, pc.element);
         rec.start = world(s.x0, v, s.z0);
         rec.end = world(s.x1, v, s.z1);

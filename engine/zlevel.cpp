@@ -37,28 +37,9 @@ std::string validate(const ZLevelOpParams& p) {
 
 namespace {
 
-// Polyline of one contour segment from a (included) towards b (excluded): lines exactly,
-// arcs by their circumscribed polygon (see zlevel.hpp), never inside the region.
-void arc_outside(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
-  out.push_back(s.a);
-  if (s.kind == ContourSegKind::kLine) return;
-  const double span = s.t1 - s.t0;
-  const double r = std::max(s.r1, s.r2);
-  // k = 1 / cos(dt / 2) - 1 <= tol / r.
-  const double max_dt = 2 * std::acos(1 / (1 + tol / r));
-  const int n = std::max(1, int(std::ceil(std::abs(span) / max_dt - tol::kCountSlack)));
-  if (n > 100000) return;  // a near-line (huge ellipse): its chord is within rounding
-  const double dt = span / n, k = 1 / std::cos(dt / 2);
-  const Vec2 perp(-s.axis.y(), s.axis.x());
-  for (int j = 1; j <= n; ++j) {
-    const double t = s.t0 + (j - 0.5) * dt;
-    out.push_back(s.centre + k * (s.r1 * std::cos(t) * s.axis + s.r2 * std::sin(t) * perp));
-  }
-}
-
 struct LevelOut {
   ZLevelChunk chunk;
-  std::uint64_t candidates = 0, open_chains = 0, repaired_links = 0, holes = 0, points = 0;
+  std::uint64_t candidates = 0, open_chains = 0, holes = 0, points = 0;
   std::uint64_t kinds[3] = {0, 0, 0};
 };
 
@@ -146,13 +127,13 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     const std::size_t n = prefix(*cand, zk);
     ZLevelParams kp = kernel;
     kp.workspace = &workspaces.local();
+    kp.clearance_cap = p.tolerance;
     kp.inside = &inside;
     const ZLevelResult r =
         zlevel_contours(el, std::span<const std::uint32_t>(cand->data(), n), zk, kp);
     if (i + 1 == chunk_end) next_inside = zlevel_inside(r, 0.5 * el.radius);
     out.candidates = n;
     out.open_chains = r.stats.open_chains;
-    out.repaired_links = r.stats.repaired_links;
     ZLevelChunk& ch = out.chunk;
     std::vector<Vec2> pts;
     for (std::size_t c = 0; c < r.contours.size(); ++c) {
@@ -162,7 +143,7 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       std::vector<std::uint8_t> contact;
       for (const ContourSeg& s : con.segs) {
         const std::size_t before = pts.size();
-        arc_outside(s, p.tolerance, pts);
+        circumscribed(s, std::min(p.tolerance, s.clearance), pts);
         contact.resize(pts.size(), contact_code(el, s.element));
         (void)before;
         ZLevelSegmentRecord rec;
@@ -268,7 +249,6 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
       st.tangent += o.kinds[2];
       st.candidates += o.candidates;
       st.open_chains += o.open_chains;
-      st.repaired_links += o.repaired_links;
       st.points += o.points;
     }
   };

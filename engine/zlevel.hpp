@@ -87,7 +87,6 @@ struct ZLevelOpStats {
   std::uint64_t junctions = 0, sharp_concave = 0, tangent = 0, convex = 0;
   std::uint64_t candidates = 0;   // summed over levels
   std::uint64_t open_chains = 0;  // contours the kernel could not close (0 expected)
-  std::uint64_t repaired_links = 0;  // contour ends linked across a gap <= tol::kZLevelRepair
   std::uint64_t facets = 0, edges = 0, vertices = 0;
   double top_z = 0, bottom_z = 0;  // the part's z range, mm
   ConditionStats condition;        // the input conditioning (zeros when not asked)

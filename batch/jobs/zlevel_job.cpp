@@ -94,7 +94,6 @@ void push_zlevel_stats(const ZLevelOpStats& st, std::vector<out::StatValue>& sta
       {"junctions_tangent", i64(st.tangent), ""},
       {"candidates", i64(st.candidates), ""},
       {"open_chains", i64(st.open_chains), ""},
-      {"repaired_links", i64(st.repaired_links), ""},
       {"condition_planes", i64(st.condition.planes), ""},
       {"condition_moved_vertices", i64(st.condition.moved_vertices), ""},
       {"condition_max_move", st.condition.max_move, "mm"},

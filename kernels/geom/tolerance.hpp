@@ -282,36 +282,64 @@ inline constexpr double kEnvelopeMinWidth = 1e-12;
 // are joined by a vertical segment (the tool passes a vertical wall).
 inline constexpr double kEnvelopeJump = 1e-9;
 
+// mm. A run of envelope spans narrower than this in all, lying between two spans and not
+// above the higher of their facing ends, is a hole: the curve crosses it at that height.
+// Pieces that meet in exact arithmetic (a facet's offset edge and its cylinder's wedge side,
+// a cylinder's cap and its vertex sphere, an ellipse's vertical tangent and a steep facet)
+// get their ends from different formulas, and where the plane meets their edge at a grazing
+// angle the ends move apart by rounding / angle (4e-9 mm on a relief): something lower shows
+// through. Filling such a hole is one-sided (the tool stays above), and a real dip this
+// narrow is a slot the tool fits into within 1e-6 mm, which it then passes over.
+inline constexpr double kEnvelopeHole = 1e-6;
+
+// mm. A scan segment on a cylinder's elliptic section whose middle lies within this of its
+// chord is written as a line (kind cylinder-line): an edge nearly parallel to the drive plane
+// has an ellipse whose centre lies 1e9 mm away, and its centre form could not be evaluated.
+inline constexpr double kScanFlatSection = 1e-10;
+
 // Radians. A junction whose two tangent directions differ by less than this is tangent
 // (the path continues smoothly from one element to the next).
 inline constexpr double kJunctionTangentAngle = 1e-6;
 
 // ---- Z-level contours (kernels/scan/zlevel*) ----
 
-// mm. A point within this of a region's boundary is on it (z-level contours): a contour piece
-// whose sample points all lie this close to another region's boundary is coincident with it
-// (the lower element id keeps a shared piece; a piece with regions on both sides is dropped),
-// and a piece is inside another region only when deeper than this. Coincident boundaries of
-// different elements (stacked edges of a wall, duplicated vertices) agree to ~1e-14 mm.
+// mm. A point within this of a region's boundary is on it (z-level contours): a curve is
+// coincident with another when its points lie this close to it (the lower element id keeps a
+// shared stretch), and a line ending this close to another splits it (a T-junction).
+// Coincident boundaries of different elements (stacked edges of a wall, duplicated vertices)
+// agree to ~1e-14 mm.
 inline constexpr double kZLevelOnBoundary = 1e-11;
 
-// mm. Contour piece ends closer than this are the same contour vertex when pieces are linked
-// into loops (a kept piece shorter than this joins its ends). Covers split points of one
-// vertex computed from different curve pairs and short pieces between nearby joints; pieces
-// that stay within kZLevelOnBoundary of another region's boundary over longer stretches
-// (next to tangent joints on flat edges, at grazing crossings) are classified by the kernel,
-// not by this.
+// mm. Contour piece ends closer than this are one vertex of the planar map of the pieces
+// (a piece whose two ends are one vertex is a sliver and left out): split points of one
+// vertex computed from different curve pairs, pieces between nearby joints.
 inline constexpr double kZLevelLink = 1e-5;
 
 // mm. After linking (kZLevelLink), a contour piece whose end no piece leaves is linked to the
-// nearest piece that no piece enters when that one starts within this. A safety net, counted
-// (ZLevelStats::repaired_links; the contour then has a gap of this size at most): nearly
-// coincident tangent lines of one circle (stacked wall edges of a CAD part whose directions
-// differ by ~1e-5 rad in float coordinates) are split at their tangent points (joints moved
-// to the coincident circle kept, T-junctions between lines), but where many such lines
-// converge to within kZLevelOnBoundary over ~1e-5 mm next to a corner their crossings and
-// classification can still disagree at that scale.
+// nearest piece that no piece enters when that one starts within this (where the
+// classification, not the faces, decides: see zlevel.hpp step 8).
 inline constexpr double kZLevelRepair = 1e-4;
+
+// mm. The pieces at a vertex of the planar map are ordered around it by where they cross a
+// circle about it of at least this radius (four times the spread of their ends, when larger):
+// well above rounding (two curves leaving one point tangentially are ~kappa r^2 / 2 = 1e-12
+// mm apart there at kappa = 2 / mm), well below the features of a contour.
+inline constexpr double kZLevelOrderRadius = 1e-6;
+
+// Radians. Pieces crossing that circle at angles closer than this are ordered by how much
+// they turn leaving the vertex (a line leaving along an arc's tangent lies on its outer side).
+inline constexpr double kZLevelTangentTie = 1e-9;
+
+// Dimensionless. The polyline of a contour arc bulges outwards by at most the chordal
+// tolerance, less beside a narrower gap of U's complement (ContourSeg::clearance), but not
+// less than this times the tolerance (1e-6 mm at the default 1e-3 mm: the verifier's limit).
+inline constexpr double kZLevelMinBulge = 1e-3;
+
+// mm. Two pieces joining the same two vertices of the planar map, one's midpoint this close to
+// the other's curve, are one edge (nearly coincident boundaries of different elements: the
+// clip lines of nearly coplanar facets, a clip line and a flat edge's ellipse); they would
+// bound a face too thin to order around its two vertices consistently.
+inline constexpr double kZLevelDuplicate = 1e-7;
 
 // mm. A cell of the z-level pruning grid is interior when it lies this deep inside one region.
 inline constexpr double kZLevelCellMargin = 1e-9;
@@ -327,10 +355,6 @@ inline constexpr double kZLevelInsideDepth = 0.005;
 // it lies this deep inside the region's polygon: well above the rounding of the contour
 // points the polygon is made of (~1e-11 mm), which lie on the exact boundary.
 inline constexpr double kZLevelInsideMargin = 1e-6;
-
-// mm. The same margin when the contours had repaired links (kZLevelRepair): five times their
-// largest gap, a tenth of kZLevelInsideDepth.
-inline constexpr double kZLevelInsideRepaired = 5e-4;
 
 // mm. Root isolation on conic arcs stops at sub-arcs shorter than this: two crossings closer
 // than this may both be missed (the curves then touch within rounding).

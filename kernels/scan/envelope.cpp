@@ -297,73 +297,103 @@ JunctionKind junction_kind(double dx1, double dz1, double dx2, double dz2) {
   return angle > 0 ? JunctionKind::kSharpConcave : JunctionKind::kConvex;
 }
 
+namespace {
+
+// Highest tip z of a piece over [a, b] (pieces are concave: the tilted maximum at slope 0).
+double peak_tip(const SlicePiece& p, double a, double b) {
+  return tip_z(p, argmax_tilted(p, 0, a, b));
+}
+
+// The spans the curve keeps (indices into spans, in order). A run of spans [k, m] narrower
+// than tol::kEnvelopeHole from the end of span k - 1 to the start of span m + 1, whose
+// pieces stay below the higher of the two facing ends (span k - 1's end, span m + 1's
+// start), is a hole that rounding opened between two pieces (tol::kEnvelopeHole): it is left
+// out, and the curve crosses it at that height (plane_curve). A run that sticks out above
+// both is kept (a spike of the part).
+std::vector<std::size_t> kept_spans(std::span<const SlicePiece> pieces,
+                                    std::span<const EnvelopeSpan> spans) {
+  std::vector<std::size_t> kept;
+  const std::size_t n = spans.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    std::size_t last = n;  // the longest hole [k, last] found
+    if (!kept.empty() && kept.back() + 1 == k) {
+      const EnvelopeSpan& l = spans[k - 1];
+      const double zl = tip_z(pieces[l.piece], l.x1);
+      double high = -INFINITY;  // the run's highest point so far
+      for (std::size_t m = k; m + 1 < n && spans[m + 1].x0 - l.x1 < tol::kEnvelopeHole; ++m) {
+        high = std::max(high, peak_tip(pieces[spans[m].piece], spans[m].x0, spans[m].x1));
+        const EnvelopeSpan& r = spans[m + 1];
+        if (high <= std::max(zl, tip_z(pieces[r.piece], r.x0)) + tol::kEnvelopeJump) last = m;
+      }
+    }
+    if (last == n)
+      kept.push_back(k);
+    else
+      k = last;  // skip [k, last]
+  }
+  return kept;
+}
+
+// A junction between the kept spans `left` and `sp` (touching, or across a hole), with a
+// vertical segment before it where the heights differ (the tool passes a wall). Across a hole
+// [a, b] the vertical stands on the lower side's end, so the curve crosses at the higher
+// height.
+void join_spans(std::span<const SlicePiece> pieces, const EnvelopeSpan& left,
+                const EnvelopeSpan& sp, PlaneCurve& out) {
+  const SlicePiece &p = pieces[left.piece], &q = pieces[sp.piece];
+  const double zl = tip_z(p, left.x1), zr = tip_z(q, sp.x0);
+  const double x = zr > zl ? left.x1 : sp.x0;
+  const double sl = slope(p, left.x1), sr = slope(q, sp.x0);
+  const Vec3 bl = piece_contact(p, left.x1).normal, br = piece_contact(q, sp.x0).normal;
+  CurveJunction j;
+  j.x = x;
+  j.element1 = p.element;
+  j.element2 = q.element;
+  if (std::abs(zl - zr) > tol::kEnvelopeJump) {
+    const bool left_high = zl > zr;
+    const std::uint32_t high = left_high ? left.piece : sp.piece;
+    const Vec3 bh = left_high ? bl : br;
+    const double dz = zr - zl;
+    j.z = zl;
+    j.kind = junction_kind(1, sl, 0, dz);
+    j.element2 = pieces[high].element;
+    j.b1 = bl;
+    j.b2 = bh;
+    j.segment = std::uint32_t(out.segments.size());
+    out.junctions.push_back(j);
+    out.segments.push_back({high, true, x, x, zl, zr});
+    j.z = zr;
+    j.kind = junction_kind(0, dz, 1, sr);
+    j.element1 = pieces[high].element;
+    j.element2 = q.element;
+    j.b1 = bh;
+    j.b2 = br;
+  } else {
+    j.z = zr;
+    j.kind = junction_kind(1, sl, 1, sr);
+    j.b1 = bl;
+    j.b2 = br;
+  }
+  j.segment = std::uint32_t(out.segments.size());
+  out.junctions.push_back(j);
+}
+
+}  // namespace
+
 void plane_curve(std::span<const SlicePiece> pieces, std::span<const EnvelopeSpan> spans,
                  PlaneCurve& out) {
   out.segments.clear();
   out.junctions.clear();
   out.run_starts.clear();
-  auto push = [&](std::uint32_t piece, double x0, double x1) {
-    const SlicePiece& p = pieces[piece];
-    out.segments.push_back({piece, false, x0, x1, tip_z(p, x0), tip_z(p, x1)});
-  };
-  constexpr std::size_t kNoSpan = ~std::size_t(0);
-  std::size_t prev = kNoSpan;  // the last span emitted
-  for (std::size_t k = 0; k < spans.size(); ++k) {
-    const EnvelopeSpan& sp = spans[k];
-    // A span of no length inside a run (a piece that is one point here, e.g. a facet whose
-    // vertex the plane passes through, tied with its coplanar neighbours) is skipped unless
-    // it sticks out: its neighbours meet directly, without two junctions at one point.
-    if (prev < k && k + 1 < spans.size() && !(sp.x0 < sp.x1) && spans[prev].x1 >= sp.x0 &&
-        spans[k + 1].x0 <= sp.x1) {
-      const double z = tip_z(pieces[sp.piece], sp.x0);
-      if (z <= std::max(tip_z(pieces[spans[prev].piece], sp.x0),
-                        tip_z(pieces[spans[k + 1].piece], sp.x0)) + tol::kEnvelopeJump)
-        continue;
-    }
-    const std::size_t left = prev;
-    prev = k;
-    if (left == kNoSpan || spans[left].x1 < sp.x0) {
-      out.run_starts.push_back(std::uint32_t(out.segments.size()));
-      push(sp.piece, sp.x0, sp.x1);
-      continue;
-    }
-    const SlicePiece &p = pieces[spans[left].piece], &q = pieces[sp.piece];
-    const double x = sp.x0;
-    const double zl = tip_z(p, x), zr = tip_z(q, x);
-    const double sl = slope(p, x), sr = slope(q, x);
-    const Vec3 bl = piece_contact(p, x).normal, br = piece_contact(q, x).normal;
-    CurveJunction j;
-    j.x = x;
-    j.element1 = p.element;
-    j.element2 = q.element;
-    if (std::abs(zl - zr) > tol::kEnvelopeJump) {
-      const bool left_high = zl > zr;
-      const std::uint32_t high = left_high ? spans[left].piece : sp.piece;
-      const Vec3 bh = left_high ? bl : br;
-      const double dz = zr - zl;
-      j.z = zl;
-      j.kind = junction_kind(1, sl, 0, dz);
-      j.element2 = pieces[high].element;
-      j.b1 = bl;
-      j.b2 = bh;
-      j.segment = std::uint32_t(out.segments.size());
-      out.junctions.push_back(j);
-      out.segments.push_back({high, true, x, x, zl, zr});
-      j.z = zr;
-      j.kind = junction_kind(0, dz, 1, sr);
-      j.element1 = pieces[high].element;
-      j.element2 = q.element;
-      j.b1 = bh;
-      j.b2 = br;
-    } else {
-      j.z = zr;
-      j.kind = junction_kind(1, sl, 1, sr);
-      j.b1 = bl;
-      j.b2 = br;
-    }
-    j.segment = std::uint32_t(out.segments.size());
-    out.junctions.push_back(j);
-    push(sp.piece, sp.x0, sp.x1);
+  const std::vector<std::size_t> kept = kept_spans(pieces, spans);
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const EnvelopeSpan& sp = spans[kept[i]];
+    const SlicePiece& q = pieces[sp.piece];
+    if (i == 0 || spans[kept[i - 1]].x1 + tol::kEnvelopeHole <= sp.x0)
+      out.run_starts.push_back(std::uint32_t(out.segments.size()));  // nothing covers the gap
+    else
+      join_spans(pieces, spans[kept[i - 1]], sp, out);
+    out.segments.push_back({sp.piece, false, sp.x0, sp.x1, tip_z(q, sp.x0), tip_z(q, sp.x1)});
   }
 }
 

@@ -150,8 +150,17 @@ void slice_sphere(const OffsetElements& el, std::uint32_t v, double y0, bool tri
   }
   // Keep the arc where the contact direction p - c satisfies (p - c) . w <= 0 for every ring
   // direction w: in the plane, X wx + Z wz <= k with X = x - c.x, Z = z - c.z, k = d wy.
-  constexpr int kMaxBp = 2 + 2 * 16;
-  double bp[kMaxBp];
+  // Two breakpoints per ring point: every one is needed (a vertex of a CAD fan has dozens;
+  // leaving some out decided whole stretches of the arc at one midpoint, and kept arcs were
+  // lost). Small rings use the stack, larger ones the heap.
+  constexpr std::size_t kInlineBp = 2 + 2 * 16;
+  std::array<double, kInlineBp> inline_bp;
+  std::vector<double> heap_bp;
+  double* bp = inline_bp.data();
+  if (const std::size_t need = 2 + 2 * std::size_t(r1 - r0); need > kInlineBp) {
+    heap_bp.resize(need);
+    bp = heap_bp.data();
+  }
   int nb = 0;
   bp[nb++] = pc.x0;
   bp[nb++] = pc.x1;
@@ -165,7 +174,7 @@ void slice_sphere(const OffsetElements& el, std::uint32_t v, double y0, bool tri
       continue;
     }
     const double dist = kk / h;
-    if (!(std::abs(dist) < r) || nb + 2 > kMaxBp) continue;
+    if (!(std::abs(dist) < r)) continue;
     const double t = std::sqrt((r - dist) * (r + dist));
     const double X0 = dist * w.x() / h;
     bp[nb++] = c.x() + X0 - t * w.z() / h;

@@ -102,7 +102,7 @@ void fill_lists(const Grid& grid, std::size_t n, BoxOf box_of, CellLists& out) {
 
 // Each open cell's regions, deepest at the cell's centre first (ties by index), with that
 // depth (lists.depth): the region that holds a curve piece in the cell is then found early in
-// uncovered_runs and classify_pieces, whose scans stop at the first, and scans end where no
+// uncovered_runs and InsideU, whose scans stop at the first, and scans end where no
 // region can matter any more (depth_cutoff).
 void sort_by_depth(const Grid& grid, const std::vector<Region>& regions, const Level& lv,
                    CellLists& lists) {
@@ -519,10 +519,10 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   {
     std::vector<Hit> hits;
     for_each_pair([&](std::uint32_t i, std::uint32_t j) {
-      const Curve &C = act[i], &D = act[j];
       ++st.pairs;
       hits.clear();
       bool coincident;
+      const Curve &C = act[i], &D = act[j];
       intersect_curves(C, D, lv, hits, coincident);
       const bool lines = !coincident && C.kind == CurveKind::kLine && D.kind == CurveKind::kLine &&
                          cross2(D.dir, C.dir) != 0;
@@ -545,11 +545,23 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     return a.p.y() < b.p.y();
   });
 
-  // Pieces between consecutive splits; keep those on the boundary of U.
-  std::vector<KeptPiece> kept;
-  classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, st, kept);
-  st.kept = kept.size();
-  build_loops(el, lv, regions, act, kept, result);
+  // The pieces between consecutive splits; the contours are the boundaries of the faces of
+  // their planar map that lie outside U.
+  const std::vector<Piece> pieces = split_pieces(splits, st);
+  std::vector<std::uint8_t> keep;
+  classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, keep);
+  build_loops(el, lv, regions, act, pieces, keep, result);
+  if (params.clearance_cap > 0)
+    for (ZContour& c : result.contours)
+      for (std::size_t i = 0; i < c.segs.size(); ++i) {
+        ContourSeg& s = c.segs[i];
+        if (s.kind == ContourSegKind::kLine) continue;
+        const std::size_t m = c.segs.size();
+        const std::array<std::uint32_t, 3> skip = {s.element, c.segs[(i + m - 1) % m].element,
+                                                   c.segs[(i + 1) % m].element};
+        s.clearance = arc_clearance(s, skip, params.clearance_cap, grid, region_cells, regions,
+                                    rbox, lv);
+      }
   return result;
 }
 

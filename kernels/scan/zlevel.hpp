@@ -52,19 +52,30 @@
 //     (closed form when a line is involved or for two circles; certified branch-and-bound
 //     root isolation on the arc parameter otherwise) and at the tangent joints.
 //  7. Classification (zlevel_cover.cpp classify_pieces): a piece is kept when it lies
-//     strictly inside no other region. A piece lies on one side of each region's boundary:
-//     its midpoint decides; within tol::kZLevelOnBoundary of the boundary its quarter points
-//     do (a piece leaving a tangent joint, where a flat edge's ellipse has a radius of
-//     curvature up to R / sin^2(slope)), then the orientation of a line crossing at its ends,
-//     where that line runs beside the piece (clip lines of nearly coplanar facets crossing at
-//     a grazing angle); else pieces with regions on both sides are dropped; a piece leaving a
-//     tangent joint with the region's curve (a short one stays within the tolerance) lies
-//     inside where it turns more towards its region than that curve; otherwise (coincident
-//     curves, grazing crossings) the lower element id keeps a shared piece.
-//  8. Loops (zlevel_loops.cpp): kept pieces are linked end to end (tol::kZLevelLink), runs of
-//     one element's curve merged, junctions classified; an end left without a successor is
-//     linked to the nearest free start within tol::kZLevelRepair (counted: repaired_links),
-//     chains still open are counted (open_chains) and left out.
+//     strictly inside no other region; a piece strictly inside one (by tol::kZLevelOnBoundary)
+//     is interior. A piece lies on one side of each region's boundary: its midpoint decides;
+//     within tol::kZLevelOnBoundary of the boundary its quarter points do (a piece leaving a
+//     tangent joint, where a flat edge's ellipse has a radius of curvature up to
+//     R / sin^2(slope)), then the orientation of a line crossing at its ends, where that line
+//     runs beside the piece (clip lines of nearly coplanar facets crossing at a grazing angle);
+//     else pieces with regions on both sides are dropped; a piece leaving a tangent joint with
+//     the region's curve lies inside where it turns more towards its region than that curve;
+//     otherwise (coincident curves, grazing crossings) the lower element id keeps a shared
+//     piece. These decisions on another region's boundary are one piece at a time; they need
+//     not agree with each other, and step 8 does not rely on them alone.
+//  8. Loops (zlevel_map.cpp, zlevel_loops.cpp): the pieces that are not interior form a
+//     planar map (ends within tol::kZLevelLink one vertex; a curve end on another piece
+//     within that distance splits it; pieces joining the same vertices along each other
+//     merged; the pieces about a vertex ordered by where they cross a circle of
+//     tol::kZLevelOrderRadius or more around it); each face is decided once, inside or outside
+//     U, by the length-weighted vote of its pieces' classifications, and the contours are the
+//     pieces between faces of different status, linked around each vertex to the next one
+//     counter-clockwise: closed by construction (zlevel_map.hpp says why). A connected part of
+//     the map that is not planar, or along which a kept piece has one face on both sides (a
+//     gap in the map), is linked from the classification instead (kept pieces end to end, an
+//     end left over linked to the nearest free start within tol::kZLevelRepair); a chain that
+//     still does not close is counted (open_chains) and left out. Runs of one element's curve
+//     are merged, junctions classified, and each arc's clearance (ContourSeg::clearance) found.
 // The known inside region of a higher level (ZLevelInside below, optional) is one more
 // certificate of "inside U" at steps 2 (its cells are interior), 3 (regions lying deep in it
 // are dropped before their curves are built; callers may leave such elements out of the
@@ -111,6 +122,11 @@ struct ContourSeg {
   double r1 = 0, r2 = 0;
   Vec2 axis = Vec2(1, 0);
   double t0 = 0, t1 = 0;
+  // Arcs: the largest tolerance (mm, ZLevelParams::clearance_cap divided by powers of 4, down
+  // to tol::kZLevelMinBulge times it) at which the vertices of circumscribed() lie in no other
+  // region than the arc's own and its neighbours' (beside a narrow gap of U's complement the
+  // polygon must bulge less than the gap); infinite when not computed.
+  double clearance = INFINITY;
 };
 
 // Where segment `seg` of a contour starts and the previous one (of a different element) ends.
@@ -149,7 +165,6 @@ struct ZLevelStats {
   std::uint64_t pieces = 0;            // pieces classified
   std::uint64_t kept = 0;              // pieces on the boundary
   std::uint64_t open_chains = 0;       // chains that could not be closed (0 in a valid result)
-  std::uint64_t repaired_links = 0;    // ends linked across a gap of up to tol::kZLevelRepair
   std::uint64_t convex_junctions = 0;  // convex corners (only at floors exactly at the level)
   std::uint64_t inside_regions = 0;    // regions dropped deep inside ZLevelParams::inside
   std::uint64_t inside_cells = 0;      // interior cells found inside ZLevelParams::inside
@@ -199,8 +214,7 @@ struct ZLevelInside {
   std::vector<Vec2> ref;                   // per cell: the reference point
   std::vector<std::uint8_t> ref_state;     // 0 outside, 1 inside, 2 blocked (no reference)
   std::vector<std::uint8_t> far;  // per cell: cells (Chebyshev, capped) to the nearest with an edge
-  // mm: tol::kZLevelInsideMargin, or tol::kZLevelInsideRepaired when the contours had repaired
-  // links (the polygon may then leave U by up to their gaps there).
+  // mm: tol::kZLevelInsideMargin.
   double margin = 0;
   std::uint32_t blocked_cells = 0;
   // The level's tip z, and per polygon edge 1 when it lies on the contour exactly (a line
@@ -249,6 +263,9 @@ struct ZLevelParams {
   const ZLevelInside* inside = nullptr;
   // Optional: buffers to reuse (the caller's, e.g. one per thread); null: the call's own.
   ZLevelWorkspace* workspace = nullptr;
+  // mm; > 0: each arc's ContourSeg::clearance is computed up to this (the output polylines'
+  // tolerance): the polyline keeps within it.
+  double clearance_cap = 0;
 };
 
 // Contours at tool-tip level tip_z. `candidates`: element ids that may reach the level (any
@@ -260,6 +277,12 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
 
 // Point of a segment at fraction f of its parameter (0: a, 1: b), mm.
 Vec2 seg_point(const ContourSeg& s, double f);
+// Appends the polyline of the segment from a (included) towards b (excluded) that never
+// enters the segment's own region: lines exactly; arcs by the polygon circumscribed to them in
+// their affine frame (vertices at t0 + (j - 1/2) dt scaled by 1 / cos(dt / 2), so that every
+// chord is tangent to the arc), within `tol` (mm, r_max (1 / cos(dt / 2) - 1) <= tol) of it.
+// Pass min(tol, seg.clearance) to keep out of the other regions too.
+void circumscribed(const ContourSeg& s, double tol, std::vector<Vec2>& out);
 // Appends points of the segment from a (included) towards b (excluded), chords within
 // chord_tol (mm) of the exact curve.
 void discretise(const ContourSeg& s, double chord_tol, std::vector<Vec2>& out);

@@ -243,11 +243,57 @@ void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& r
   }
 }
 
+std::vector<Piece> split_pieces(const std::vector<Split>& splits, ZLevelStats& st) {
+  std::vector<Piece> pieces;
+  for (std::size_t k = 0; k + 1 < splits.size(); ++k) {
+    const Split &s0 = splits[k], &s1 = splits[k + 1];
+    if (s0.curve != s1.curve || !(s1.s > s0.s)) continue;
+    pieces.push_back({s0.curve, s0.s, s1.s, s0.p, s1.p});
+  }
+  st.pieces = pieces.size();
+  return pieces;
+}
+
+double arc_clearance(const ContourSeg& s, const std::array<std::uint32_t, 3>& skip, double cap,
+                     const Grid& grid, const CellLists& region_cells,
+                     const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
+                     const Level& lv) {
+  // Whether x lies strictly inside a region other than those skipped (regions from x's cell,
+  // deepest at its centre first, up to the depth that cannot matter).
+  auto entered = [&](const Vec2& x) {
+    const int cell = grid.at(x);
+    if (grid.interior[cell]) return true;
+    const double cutoff = depth_cutoff((x - grid.centre(cell)).norm(), lv.R, 0);
+    for (std::uint32_t q = region_cells.start[cell]; q < region_cells.start[cell + 1]; ++q) {
+      if (region_cells.depth[q] >= cutoff) break;
+      const Region& g = regions[region_cells.ids[q]];
+      if (g.element == skip[0] || g.element == skip[1] || g.element == skip[2]) continue;
+      const Box4f& gb = rbox[region_cells.ids[q]];
+      if (x.x() < gb[0] || x.x() > gb[2] || x.y() < gb[1] || x.y() > gb[3]) continue;
+      if (region_phi(g, x, lv) < 0) return true;
+    }
+    return false;
+  };
+  std::vector<Vec2> poly;
+  for (double tol = cap; tol >= cap * tol::kZLevelMinBulge; tol *= 0.25) {
+    poly.clear();
+    circumscribed(s, tol, poly);
+    bool ok = true;
+    for (std::size_t j = 1; j < poly.size() && ok; ++j) ok = !entered(poly[j]);
+    if (ok) return tol;
+  }
+  return cap * tol::kZLevelMinBulge;
+}
+
+
+
+
+
 void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>& act,
                      const std::vector<Curve>& curves, const std::vector<Region>& regions,
                      const std::vector<Box4f>& rbox, const Grid& grid,
-                     const CellLists& region_cells, const Level& lv, ZLevelStats& st,
-                     std::vector<KeptPiece>& kept) {
+                     const CellLists& region_cells, const Level& lv,
+                     std::vector<std::uint8_t>& keep) {
   // G's candidate curve passing nearest to m, within tol::kZLevelOnBoundary (kNone if none).
   auto emits_at = [&](const Region& G, const Vec2& m) {
     std::uint32_t best = kNone;
@@ -296,14 +342,14 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
     const Split &s0 = splits[k], &s1 = splits[k + 1];
     if (s0.curve != s1.curve || !(s1.s > s0.s)) continue;
     const Curve& C = act[s0.curve];
-    ++st.pieces;
+    keep.push_back(0);
     const Vec2 m = curve_point(C, 0.5 * (s0.s + s1.s));
     const int cell = grid.at(m);
     if (grid.interior[cell]) continue;
-    bool keep = true;
+    bool kept = true, clear = false;
     // Regions whose value at m exceeds `on` do not decide anything (depth_cutoff).
     const double cutoff = depth_cutoff((m - grid.centre(cell)).norm(), lv.R, on);
-    for (std::uint32_t q = region_cells.start[cell]; keep && q < region_cells.start[cell + 1];
+    for (std::uint32_t q = region_cells.start[cell]; kept && q < region_cells.start[cell + 1];
          ++q) {
       if (region_cells.depth[q] >= cutoff) break;
       const std::uint32_t gj = region_cells.ids[q];
@@ -314,7 +360,8 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
       Vec2 gout;
       const double phi = region_phi(G, m, lv, &gout);
       if (phi < -on) {
-        keep = false;
+        kept = false;
+        clear = true;
       } else if (phi <= on) {
         // The midpoint is on G's boundary. The piece does not cross it (crossings split the
         // curves), so a quarter point clearly inside or outside G decides the side: next to
@@ -327,13 +374,13 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
           in += pf < -on;
           out += pf > on;
         }
-        if (in > 0 && out == 0) keep = false;
+        if (in > 0 && out == 0) kept = false;
         if (in == 0 && out == 0) {
           // Along G's boundary. Next to a crossing with one of G's lines the crossing's
           // orientation tells the side: clip lines of nearly coplanar facets cross at a
           // grazing angle theta and stay within `on` of each other over on / theta.
           const int side = crossing_side(k, gj);
-          if (side < 0) keep = false;
+          if (side < 0) kept = false;
           // Regions on both sides: inside U. Same side, along G's curve D: a piece leaving a
           // tangent joint with D stays within `on` of it over sqrt(2 on / dk), dk the
           // curvatures' difference (where a sloping edge's shadow line on a wall turns into its
@@ -344,16 +391,16 @@ void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>&
           if (side == 0) {
             const Vec2 t = curve_tangent(C, 0.5 * (s0.s + s1.s));
             if (gout.dot(Vec2(t.y(), -t.x())) < 0) {
-              keep = false;
+              kept = false;
             } else if (const std::uint32_t d = emits_at(G, m); d != kNone) {
               const int dep = tangent_departure_side(C, s0.s, s1.s, curves[d], lv, on);
-              if (dep == 0 ? G.element < C.element : dep > 0) keep = false;
+              if (dep == 0 ? G.element < C.element : dep > 0) kept = false;
             }
           }
         }
       }
     }
-    if (keep) kept.push_back({s0.curve, s0.s, s1.s, s0.p, s1.p});
+    keep.back() = kept ? kKept : clear ? kInterior : kTied;
   }
 }
 

@@ -245,9 +245,10 @@ inline Box4f outward_box(const double* b) {
 
 // ---- cover and classification (zlevel_cover.cpp) ----
 
-// A point splitting act[curve] at parameter s. At a crossing of two lines, `other` is the
-// other line (its index in act) and `enter` +1 when the curve runs into its region's side
-// past p, -1 when out of it (exact signs: the lines are not parallel); kNone and 0 elsewhere.
+// A point splitting act[curve] at parameter s (a curve's end, a tangent joint, a crossing).
+// At a crossing of two lines, `other` is the other line (its index in act) and `enter` +1
+// when the curve runs into its region's side past p, -1 when out of it (exact signs: the
+// lines are not parallel); kNone and 0 elsewhere.
 struct Split {
   std::uint32_t curve;
   double s;
@@ -256,8 +257,8 @@ struct Split {
   std::int8_t enter = 0;
 };
 
-// A piece of curves[curve] on the boundary of U, parameters s0 < s1, ends a and b.
-struct KeptPiece {
+// A piece of act[curve] between consecutive splits, parameters s0 < s1, ends a and b.
+struct Piece {
   std::uint32_t curve;
   double s0, s1;
   Vec2 a, b;
@@ -289,15 +290,34 @@ void joint_splits(const std::vector<Joint>& joints, const std::vector<Region>& r
                   const std::vector<Curve>& act, const std::vector<std::uint32_t>& act_begin,
                   std::vector<Split>& splits);
 
-// Appends to `kept` the pieces between consecutive splits (sorted by curve, s, point) of
-// the active curves that lie on the boundary of U; `curves` are the untrimmed candidate
-// curves (G.curve_begin..curve_end), `region_cells` the regions per open cell. Counts
+// The pieces between consecutive splits (sorted by curve, s), in that order. Counts
 // st.pieces.
+std::vector<Piece> split_pieces(const std::vector<Split>& splits, ZLevelStats& st);
+
+// Classification of a piece: strictly inside another region or an interior cell (0), on the
+// boundary of U (1), or left out by one of the decisions on another region's boundary below (2).
+inline constexpr std::uint8_t kInterior = 0, kKept = 1, kTied = 2;
+
+// Per piece of split_pieces (in its order): kKept when it lies on the boundary of U, by its
+// midpoint: it lies strictly inside no other region (`curves` are the untrimmed candidate
+// curves, G.curve_begin..curve_end, `region_cells` the regions per open cell). On another
+// region's boundary (within tol::kZLevelOnBoundary) its quarter points, the orientation of a
+// line crossing it at its ends, the curvatures of a tangent departure, and last the lower
+// element id decide (zlevel.hpp, step 7).
 void classify_pieces(const std::vector<Split>& splits, const std::vector<Curve>& act,
                      const std::vector<Curve>& curves, const std::vector<Region>& regions,
                      const std::vector<Box4f>& rbox, const Grid& grid,
-                     const CellLists& region_cells, const Level& lv, ZLevelStats& st,
-                     std::vector<KeptPiece>& kept);
+                     const CellLists& region_cells, const Level& lv,
+                     std::vector<std::uint8_t>& keep);
+
+// ContourSeg::clearance of arc `s` (a contour segment) up to `cap` mm: the regions other than
+// those of the elements `skip` (its own and its neighbours' in the contour) are looked up at
+// the polygon's vertices in the open cells' region lists.
+double arc_clearance(const ContourSeg& s, const std::array<std::uint32_t, 3>& skip, double cap,
+                     const Grid& grid, const CellLists& region_cells,
+                     const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
+                     const Level& lv);
+
 
 // ---- the known inside region (zlevel_inside.cpp, ZLevelInside in zlevel.hpp) ----
 
@@ -321,11 +341,16 @@ double inside_depth_bound(const ZLevelInside& q, const Vec2* hull, int n, double
 
 // ---- loops (zlevel_loops.cpp) ----
 
-// Links the pieces into closed loops (ends within tol::kZLevelLink), merges runs of one element's
-// curve, classifies junctions and writes the canonical contours into out. Chains that do not
-// close are counted (out.stats.open_chains) and left out.
+// The contours from the pieces (zlevel.hpp, step 8): the pieces form a planar map (ends
+// within tol::kZLevelLink are one vertex, the pieces around a vertex in the order of their
+// tangents, then curvatures); each face is inside U when it lies on the region side of one of
+// its pieces, else as `inside_u` says at points tol::kZLevelFaceProbe beside its pieces
+// (their lengths vote); the contours are the boundaries of the faces outside U, split into
+// simple loops where they pass a vertex twice, merged into runs of one element's curve, with
+// their junctions, in canonical order.
 void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
-                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept, ZLevelResult& out);
+                 const std::vector<Curve>& curves, std::vector<Piece> pieces,
+                 std::vector<std::uint8_t> keep, ZLevelResult& out);
 
 // Signed area enclosed by a loop of segments, mm^2 (exact for the typed segments).
 double contour_area(const std::vector<ContourSeg>& segs);

@@ -132,8 +132,7 @@ ZLevelInside zlevel_inside(const ZLevelResult& higher, double cell) {
   ZLevelInside q;
   if (higher.contours.empty() || higher.stats.open_chains > 0) return q;
   q.tip_z = higher.tip_z;
-  q.margin =
-      higher.stats.repaired_links > 0 ? tol::kZLevelInsideRepaired : tol::kZLevelInsideMargin;
+  q.margin = tol::kZLevelInsideMargin;
   // Inscribed polygons: the points lie on the segments, a chord of an arc inside its region.
   std::vector<Vec2> pts;
   double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};

@@ -1,11 +1,13 @@
 // Z-level contours: linking kept pieces into loops, merging, junctions, canonical output
 // (kernels/scan/zlevel.hpp); segment evaluation and discretisation.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <span>
 
-#include "kernels/scan/zlevel_detail.hpp"
+#include "kernels/scan/zlevel_map.hpp"
 
 namespace ncpath {
 
@@ -14,20 +16,6 @@ namespace zlevel_detail {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-struct Dsu {
-  std::vector<std::uint32_t> p;
-  explicit Dsu(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) p[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 Vec2 unit(const Vec2& v) {
   const double n = v.norm();
@@ -46,13 +34,16 @@ struct RawSeg {
   Vec2 tin, tout;  // unit tangents at a and at b
 };
 
-RawSeg raw_seg(const Curve& c, const KeptPiece& k) {
+// The segment of piece k run forwards, or backwards (`reversed`: an arc then runs
+// clockwise, t1 < t0).
+RawSeg raw_seg(const Curve& c, const Piece& k, bool reversed) {
   RawSeg r;
   ContourSeg& s = r.seg;
+  const double s0 = reversed ? k.s1 : k.s0, s1 = reversed ? k.s0 : k.s1;
   s.element = c.element;
   s.shadow = c.shadow;
-  s.a = k.a;
-  s.b = k.b;
+  s.a = reversed ? k.b : k.a;
+  s.b = reversed ? k.a : k.b;
   if (c.kind != CurveKind::kLine) {
     s.kind =
         c.kind == CurveKind::kCircle ? ContourSegKind::kCircleArc : ContourSegKind::kEllipseArc;
@@ -60,11 +51,12 @@ RawSeg raw_seg(const Curve& c, const KeptPiece& k) {
     s.r1 = c.r1;
     s.r2 = c.r2;
     s.axis = c.axis;
-    s.t0 = c.t0 + k.s0;
-    s.t1 = c.t0 + k.s1;
+    s.t0 = c.t0 + s0;
+    s.t1 = c.t0 + s1;
   }
-  r.tin = unit(curve_tangent(c, k.s0));
-  r.tout = unit(curve_tangent(c, k.s1));
+  const double sign = reversed ? -1 : 1;
+  r.tin = sign * unit(curve_tangent(c, s0));
+  r.tout = sign * unit(curve_tangent(c, s1));
   return r;
 }
 
@@ -73,7 +65,8 @@ bool mergeable(const RawSeg& p, const RawSeg& q) {
   if (a.element != b.element || a.kind != b.kind || a.shadow != b.shadow) return false;
   if (a.kind == ContourSegKind::kLine)
     return std::abs(cross2(p.tout, q.tin)) < tol::kZLevelSameDirection && p.tout.dot(q.tin) > 0;
-  return a.centre == b.centre && a.r1 == b.r1 && a.r2 == b.r2 && a.axis == b.axis;
+  return a.centre == b.centre && a.r1 == b.r1 && a.r2 == b.r2 && a.axis == b.axis &&
+         (a.t1 > a.t0) == (b.t1 > b.t0);
 }
 
 Vec3 contact_vector(const OffsetElements& el, const Region& g, const Vec2& x, const Level& lv) {
@@ -106,11 +99,13 @@ const Region& region_of(const std::vector<Region>& regions, std::uint32_t elemen
 
 // Emits one closed loop of kept pieces as a contour into out.
 void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
-               const std::vector<Curve>& curves, const std::vector<KeptPiece>& kept,
-               const std::vector<std::uint32_t>& seq, ZLevelResult& out) {
+               const std::vector<Curve>& curves, const std::vector<Piece>& loop,
+               const std::vector<std::uint8_t>& reversed, ZLevelResult& out) {
   std::vector<RawSeg> raw;
-  raw.reserve(seq.size());
-  for (std::uint32_t k : seq) raw.push_back(raw_seg(curves[kept[k].curve], kept[k]));
+  raw.reserve(loop.size());
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    if (loop[i].s0 < loop[i].s1) raw.push_back(raw_seg(curves[loop[i].curve], loop[i], reversed[i]));
+  if (raw.empty()) return;
   // Merge runs of one element's curve, cyclically.
   const std::size_t n = raw.size();
   std::size_t first = 0;
@@ -180,11 +175,52 @@ void emit_loop(const OffsetElements& el, const Level& lv, const std::vector<Regi
   out.contours.push_back(std::move(c));
 }
 
-}  // namespace
+// Where a contour runs from piece p (ending at vertex V by end `exit`) into piece q whose end
+// at V is another point of V (ends within tol::kZLevelLink are one vertex), both are moved to
+// one point: on one curve, p's end; on two curves, a point of V on both (their crossing or
+// joint, recorded for both curves with the same coordinates), the one nearest p's end. A
+// chord between two points of V would cut across the corner there.
+void snap_junction(const PieceMap& map, const std::vector<Piece>& pieces, std::uint32_t exit,
+                   Piece& p, bool p_rev, Piece& q, bool q_rev) {
+  Vec2& pe = p_rev ? p.a : p.b;
+  Vec2& qe = q_rev ? q.b : q.a;
+  if (pe == qe) return;
+  double& ps = p_rev ? p.s0 : p.s1;
+  double& qs = q_rev ? q.s1 : q.s0;
+  if (p.curve == q.curve) {
+    qe = pe;
+    qs = ps;
+    return;
+  }
+  const auto ends = map.ends_at(map.vertex_of(exit));
+  double best = INFINITY;
+  Vec2 at = pe;
+  for (std::uint32_t e : ends) {
+    const Piece& a = pieces[e / 2];
+    if (a.curve != p.curve) continue;
+    const Vec2& x = (e & 1) ? a.b : a.a;
+    for (std::uint32_t f : ends) {
+      const Piece& b = pieces[f / 2];
+      if (b.curve != q.curve || ((f & 1) ? b.b : b.a) != x) continue;
+      const double d = (x - pe).norm();
+      if (d < best) {
+        best = d;
+        at = x;
+        ps = (e & 1) ? a.s1 : a.s0;
+        qs = (f & 1) ? b.s1 : b.s0;
+      }
+    }
+  }
+  pe = qe = at;
+}
 
-void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
-                 const std::vector<Curve>& curves, std::vector<KeptPiece>& kept,
-                 ZLevelResult& out) {
+// The kept pieces linked end to end (ends within tol::kZLevelLink; where several loops touch,
+// each leaves along the first piece clockwise from the way back; an end left without a
+// successor linked to the nearest free start within tol::kZLevelRepair), closed loops emitted,
+// open chains counted and left out.
+void link_kept(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
+               const std::vector<Curve>& curves, const std::vector<Piece>& kept,
+               ZLevelResult& out) {
   const auto n = std::uint32_t(kept.size());
   // Cluster the ends within tol::kZLevelLink.
   std::vector<Vec2> pts(2 * std::size_t(n));
@@ -240,13 +276,13 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
     // Several loops touch here: leave along the first edge clockwise from the way back, so
     // that each loop keeps U on its left without crossing another.
     for (std::uint32_t a = i0; a < i1; ++a) {
-      const KeptPiece& pin = kept[ins[a]];
+      const Piece& pin = kept[ins[a]];
       const Vec2 back = -unit(curve_tangent(curves[pin.curve], pin.s1));
       std::uint32_t best = kNone;
       double best_a = INFINITY;
       for (std::uint32_t b = o0; b < o1; ++b) {
         if (claimed[outs[b]]) continue;
-        const KeptPiece& po = kept[outs[b]];
+        const Piece& po = kept[outs[b]];
         const double ang = cw_angle(back, unit(curve_tangent(curves[po.curve], po.s0)));
         if (ang < best_a) {
           best_a = ang;
@@ -295,7 +331,6 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
       if (best == orphan.size()) continue;
       taken[best] = 1;
       next[k] = orphan[best];
-      ++out.stats.repaired_links;
     }
   }
   // Trace.
@@ -321,8 +356,77 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
       ++out.stats.open_chains;
       continue;
     }
-    emit_loop(el, lv, regions, curves, kept, seq, out);
+    std::vector<Piece> loop;
+    for (std::uint32_t q : seq) loop.push_back(kept[q]);
+    emit_loop(el, lv, regions, curves, loop, std::vector<std::uint8_t>(loop.size(), 0), out);
   }
+}
+
+}  // namespace
+
+void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Region>& regions,
+                 const std::vector<Curve>& curves, std::vector<Piece> pieces,
+                 std::vector<std::uint8_t> keep, ZLevelResult& out) {
+  attach_loose_ends(curves, pieces, keep);
+  const PieceMap map(curves, pieces, keep);
+  const Faces faces = decide_faces(map, pieces, keep);
+
+  // Contour pieces: faces of different status on their two sides. Each runs with U on its
+  // left: forwards when its region side is inside, else backwards. lead[e] for an end e by
+  // which a contour leaves a vertex.
+  const std::size_t n = pieces.size();
+  auto status = [&](std::uint32_t h) { return faces.inside[faces.face[h]]; };
+  std::vector<std::uint8_t> contour(n, 0), backwards(n, 0);
+  const std::vector<std::uint8_t> sound = sound_pieces(map, faces, pieces, keep);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    if (map.dead(k)) continue;
+    if (!sound[k]) continue;
+    if (status(2 * k) == status(2 * k + 1)) continue;
+    contour[k] = 1;
+    backwards[k] = !status(2 * k);
+  }
+  auto leaves = [&](std::uint32_t e) { return contour[e / 2] && (e & 1) == backwards[e / 2]; };
+  // At a vertex, the contour arriving by end a leaves by the first contour end
+  // counter-clockwise from a: the faces between them lie outside U, and going round the
+  // vertex the faces' status changes at each contour end, so that end leaves; every leaving
+  // end follows exactly one arriving end. The successors form closed loops.
+  std::vector<std::uint8_t> done(n, 0), reversed;
+  std::vector<std::uint32_t> seq;
+  std::vector<Piece> loop;
+  for (std::uint32_t k0 = 0; k0 < n; ++k0) {
+    if (!contour[k0] || done[k0]) continue;
+    seq.clear();
+    const std::uint32_t first = 2 * k0 + backwards[k0];  // the end it leaves by
+    std::uint32_t e = first;
+    while (e != kNone && !done[e / 2]) {
+      done[e / 2] = 1;
+      seq.push_back(e);
+      const std::uint32_t a = e ^ 1;
+      std::uint32_t b = map.turn_from(a, 1);
+      while (b != a && !leaves(b)) b = map.turn_from(b, 1);
+      e = b != a ? b : kNone;
+    }
+    if (e != first) {  // only where the classification decides; counted, never emitted open
+      ++out.stats.open_chains;
+      continue;
+    }
+    out.stats.kept += seq.size();
+    loop.clear();
+    reversed.clear();
+    for (std::uint32_t e : seq) {
+      loop.push_back(pieces[e / 2]);
+      reversed.push_back(e & 1);
+    }
+    for (std::size_t i = 0; i < seq.size(); ++i) {
+      const std::size_t j = (i + 1) % seq.size();
+      snap_junction(map, pieces, seq[i] ^ 1, loop[i], reversed[i], loop[j], reversed[j]);
+    }
+    emit_loop(el, lv, regions, curves, loop, reversed, out);
+  }
+  std::vector<Piece> unsound;
+  for (std::uint32_t k = 0; k < n; ++k)
+    if (!sound[k] && keep[k] == kKept) unsound.push_back(pieces[k]);
+  link_kept(el, lv, regions, curves, unsound, out);
   sort_contours(out.contours);
 }
 
@@ -363,6 +467,23 @@ Vec2 seg_point(const ContourSeg& s, double f) {
   const double d = f * (s.t1 - s.t0), h = std::sin(0.5 * d), tm = s.t0 + 0.5 * d;
   const Vec2 pa(-s.axis.y(), s.axis.x());
   return s.a + (-2 * std::sin(tm) * h * s.r1) * s.axis + (2 * std::cos(tm) * h * s.r2) * pa;
+}
+
+void circumscribed(const ContourSeg& s, double tol, std::vector<Vec2>& out) {
+  out.push_back(s.a);
+  if (s.kind == ContourSegKind::kLine) return;
+  const double span = s.t1 - s.t0;
+  const double r = std::max(s.r1, s.r2);
+  // k = 1 / cos(dt / 2) - 1 <= tol / r.
+  const double max_dt = 2 * std::acos(1 / (1 + tol / r));
+  const int n = std::max(1, int(std::ceil(std::abs(span) / max_dt - tol::kCountSlack)));
+  if (n > 100000) return;  // a near-line (huge ellipse): its chord is within rounding
+  const double dt = span / n, k = 1 / std::cos(dt / 2);
+  const Vec2 perp(-s.axis.y(), s.axis.x());
+  for (int j = 1; j <= n; ++j) {
+    const double t = s.t0 + (j - 0.5) * dt;
+    out.push_back(s.centre + k * (s.r1 * std::cos(t) * s.axis + s.r2 * std::sin(t) * perp));
+  }
 }
 
 void discretise(const ContourSeg& s, double chord_tol, std::vector<Vec2>& out) {
