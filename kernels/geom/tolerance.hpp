@@ -224,14 +224,15 @@ inline constexpr double kCoplanarSine = 1e-11;
 // planar cluster when its vertices lie within this of the cluster's fitted plane, and a
 // cluster's plane is snapped to vertical or to an axis when every vertex stays within this of
 // the snapped plane. Noise of exporters (10-13 significant digits, unit conversions, double
-// booleans: 1e-13 to 1e-6 mm) lies below it; real tessellations bend far more (a 10 mm
-// radius fitted by 0.02 mm wide facets deviates 5e-6 mm).
-inline constexpr double kConditionPlane = 3e-6;
+// booleans, float32 STL of a 100 mm part: 1e-13 to 1e-5 mm) lies below it; a 10 mm radius
+// fitted by 0.05 mm wide facets deviates 3e-5 mm, and such a cluster is only moved within
+// kConditionMove. Reliefs written at 6-7 digits had open z-level contours at 3e-6.
+inline constexpr double kConditionPlane = 3e-5;
 
 // mm. A vertex is moved onto its clusters' planes only when that moves it at most this far;
 // the slicers then run for a ball grown by the largest move made, so no path gouges the part
 // as given.
-inline constexpr double kConditionMove = 6e-6;
+inline constexpr double kConditionMove = 6e-5;
 
 // Dimensionless (relative singular value). Planes whose normals span a direction this weakly
 // (about 0.06 degrees apart) count as one direction when a vertex is moved onto several by
@@ -439,8 +440,11 @@ inline constexpr double kConcaveZoneAngle = 1e-9;
 // Dimensionless (mean lateral component of a crease's material vector along a path). A path
 // whose cut-side score is within this times its xy length of 0 has no material side: a
 // symmetric V-groove (b1 + b2 vertical to rounding, ~1e-16) or a vertical corner (no xy
-// travel). Such a path is cut climb and conventional alike and keeps its orientation.
-inline constexpr double kCutSideNeutral = 1e-6;
+// travel). Such a path is cut climb and conventional alike and keeps its orientation. The
+// conditioning (kConditionMove) and exporters' noise tilt a face's fitted plane by up to
+// ~1e-5 rad, so a symmetric groove must stay neutral well above that; a crease lopsided by
+// 0.06 degrees has no side a machinist could tell.
+inline constexpr double kCutSideNeutral = 1e-3;
 
 // Dimensionless (fraction of half the step). Sculptured pockets look for the material their
 // passes leave with the band eroded by half the step grown by this much: by exactly half, the

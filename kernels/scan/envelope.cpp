@@ -304,6 +304,38 @@ double peak_tip(const SlicePiece& p, double a, double b) {
   return tip_z(p, argmax_tilted(p, 0, a, b));
 }
 
+// Where two touching spans meet at x and the lower piece there (say the right one, below the
+// left one's end by more than tol::kEnvelopeJump) rises above that end within
+// tol::kEnvelopeHole, x is not a wall but a crossing the merge placed too early: an interval too narrow to
+// split (tol::kEnvelopeMinWidth) is decided at its midpoint, and a nearly vertical facet line
+// (a wall tilted by rounding) is above the floor at the midpoint but below it at the end, by
+// its slope times the width (1e-3 mm). The junction moves to where the rising piece reaches
+// the other's end height (bisection), so that the curve never drops below it there.
+void place_crossings(std::span<const SlicePiece> pieces, std::vector<EnvelopeSpan>& spans) {
+  for (std::size_t k = 0; k + 1 < spans.size(); ++k) {
+    EnvelopeSpan &l = spans[k], &r = spans[k + 1];
+    if (l.x1 != r.x0) continue;
+    const SlicePiece &p = pieces[l.piece], &q = pieces[r.piece];
+    const double zl = tip_z(p, l.x1), zr = tip_z(q, r.x0);
+    const bool right_low = zr < zl - tol::kEnvelopeJump, left_low = zl < zr - tol::kEnvelopeJump;
+    if (!right_low && !left_low) continue;
+    const SlicePiece& low = right_low ? q : p;
+    const EnvelopeSpan& ls = right_low ? r : l;
+    const double target = right_low ? zl : zr;
+    if (!(peak_tip(low, ls.x0, ls.x1) > target)) continue;  // a wall: it stays lower
+    // From the junction to the peak the low piece rises through the target (it is concave);
+    // only a crossing within tol::kEnvelopeHole of the junction is one the merge misplaced.
+    const double x = right_low ? r.x0 : l.x1;
+    double near = x, far = argmax_tilted(low, 0, ls.x0, ls.x1);
+    for (int it = 0; it < 100 && near != far; ++it) {
+      const double m = 0.5 * (near + far);
+      if (m == near || m == far) break;
+      (tip_z(low, m) > target ? far : near) = m;
+    }
+    if (std::abs(far - x) < tol::kEnvelopeHole) l.x1 = r.x0 = far;
+  }
+}
+
 // The spans the curve keeps (indices into spans, in order). A run of spans [k, m] narrower
 // than tol::kEnvelopeHole from the end of span k - 1 to the start of span m + 1, whose
 // pieces stay below the higher of the two facing ends (span k - 1's end, span m + 1's
@@ -380,11 +412,13 @@ void join_spans(std::span<const SlicePiece> pieces, const EnvelopeSpan& left,
 
 }  // namespace
 
-void plane_curve(std::span<const SlicePiece> pieces, std::span<const EnvelopeSpan> spans,
+void plane_curve(std::span<const SlicePiece> pieces, std::span<const EnvelopeSpan> given,
                  PlaneCurve& out) {
   out.segments.clear();
   out.junctions.clear();
   out.run_starts.clear();
+  std::vector<EnvelopeSpan> spans(given.begin(), given.end());
+  place_crossings(pieces, spans);
   const std::vector<std::size_t> kept = kept_spans(pieces, spans);
   for (std::size_t i = 0; i < kept.size(); ++i) {
     const EnvelopeSpan& sp = spans[kept[i]];

@@ -263,7 +263,8 @@ TEST(ZLevel, NoisyCadPartClosesEveryContour) {
 
 // anchor_dense midpoint-subdivided three times and stored in float32 in its own units (extent
 // 1), as datasets/make-large-mesh.sh writes anchor_large (486,272 facets), then fit to 200 mm:
-// the rounding (up to 6e-6 mm) lies above the conditioning's plane tolerance, so the walls'
+// the rounding (up to 6e-6 mm, above the conditioning's plane tolerance when this was written:
+// 3e-6), so the walls'
 // stacked edges stay ~1e-5 rad apart and their shadows and corner circles nearly coincide
 // (before the planar map of the pieces, kernels/scan/zlevel_map.hpp, 31 chains stayed open
 // here at 1 mm steps without a repair pass).
