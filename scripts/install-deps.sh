@@ -44,6 +44,7 @@ EXTRA=(
   libopenmpi-dev       # batch/CMakeLists.txt: find_package(MPI COMPONENTS CXX), ncpath-mpi
   libcairo2-dev        # batch/CMakeLists.txt: previews and the report (pkg-config cairo)
   chromium             # tests/batch/preview_test.cpp: the report opened in headless Chromium
+  openscad             # datasets/make-openscad-corpus.sh: its examples, the robustness corpus
 )
 # shellcheck disable=SC2206  # word splitting of the env var is intended
 EXTRA+=(${NCPATH_EXTRA_PACKAGES:-})

@@ -8,6 +8,12 @@
 //   turn 37.3      turned about the z axis through the origin by 37.3 degrees
 //   far            translated by (1000, -1000, 0) mm
 //   reversed       every facet's winding reversed
+// and, for the robustness tests of issue 34 (more_representation_variants):
+//   noise 1e-5     as above, 1e-6 and 1e-5 mm
+//   turn 90        turned by 90 degrees
+//   shuffled       facets in a random order
+//   soup           every facet with its own three vertices (an STL file as read, unwelded)
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -68,6 +74,33 @@ inline std::vector<Variant> representation_variants() {
                  }});
   out.push_back({"reversed", [](TriangleMesh& m) {
                    for (auto& f : m.facets) std::swap(f[1], f[2]);
+                 }});
+  return out;
+}
+
+inline std::vector<Variant> more_representation_variants() {
+  std::vector<Variant> out = representation_variants();
+  for (double e : {1e-6, 1e-5})
+    out.push_back({noise_label(e, 3), [e](TriangleMesh& m) {
+                     std::mt19937_64 bits(3);
+                     std::uniform_real_distribution<double> u(-e, e);
+                     each_coordinate(m, [&](double x) { return x + u(bits); });
+                   }});
+  out.push_back({"turn 90", [](TriangleMesh& m) {
+                   for (Vec3& v : m.vertices) v = Vec3(-v.y(), v.x(), v.z());
+                 }});
+  out.push_back({"shuffled", [](TriangleMesh& m) {
+                   std::mt19937_64 bits(7);
+                   std::shuffle(m.facets.begin(), m.facets.end(), bits);
+                 }});
+  out.push_back({"soup", [](TriangleMesh& m) {
+                   TriangleMesh s;
+                   for (const auto& f : m.facets) {
+                     const auto base = std::uint32_t(s.vertices.size());
+                     for (std::uint32_t v : f) s.vertices.push_back(m.vertices[v]);
+                     s.facets.push_back({base, base + 1, base + 2});
+                   }
+                   m = std::move(s);
                  }});
   return out;
 }
