@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <tuple>
+#include <utility>
 
 namespace ncpath::zlevel_detail {
 
@@ -78,16 +79,16 @@ void PieceMap::cluster_ends() {
     pts[2 * k] = pieces_[k].a;
     pts[2 * k + 1] = pieces_[k].b;
   }
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return pts[a].x() != pts[b].x() ? pts[a].x() < pts[b].x() : a < b;
-  });
+  // By x, then by end index (the keys sorted by value: no indirection in the comparisons).
+  std::vector<std::pair<double, std::uint32_t>> order(n);
+  for (std::uint32_t e = 0; e < n; ++e) order[e] = {pts[e].x(), e};
+  std::sort(order.begin(), order.end());
   Dsu dsu(n);
   const double link = tol::kZLevelLink;
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n && pts[order[j]].x() - pts[order[i]].x() <= link; ++j)
-      if ((pts[order[j]] - pts[order[i]]).norm() <= link) dsu.unite(order[i], order[j]);
+    for (std::size_t j = i + 1; j < n && order[j].first - order[i].first <= link; ++j)
+      if ((pts[order[j].second] - pts[order[i].second]).norm() <= link)
+        dsu.unite(order[i].second, order[j].second);
   std::vector<std::uint32_t> id(n, kNone);
   vertex_.resize(n);
   vertices_ = 0;
