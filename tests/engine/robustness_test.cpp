@@ -112,7 +112,7 @@ TEST_P(GeneratedParts, EveryRepresentationIsCleanAndAgreesWithTheFullPrecisionPa
 }
 
 // Pencil length within 1 % and paths within 10 % of the full-precision part's. Known to fail
-// on about a third of the CAD seeds and on reliefs turned 37.3 degrees (a merged link or a
+// on about 28 % of the CAD seeds and 2 % of the reliefs (a merged link or a
 // refined run of points kept or split by the chord check depending on the rounding): see
 // docs/architecture.md, "Known limit: pencil paths depend on the representation", and
 // bench/corpus_soak.cpp's "pencil invariance" line for the rate.
