@@ -151,6 +151,16 @@ TEST(FormerScanGouges, NearlyHorizontalEdgesAtTheEndsOfTheirSections) {
   }
 }
 
+// Found by the soak (2026-11-29), not fixed yet: relief seed 1020 with the 6 mm ball, at full
+// precision, keeps 21 chains open at tip z -0.41 (the shadows of the base's top front edge
+// leave gaps of 0.02-0.04 mm at its vertices, where the vertices' arcs are missing, so the
+// planar map is not sound there and its fallback links the rest). Enable when fixed.
+TEST(KnownOpenZLevel, DISABLED_ReliefSeed1020ClosesEveryContour) {
+  const TriangleMesh part = test::random_relief(1020);
+  const test::KernelRun r = test::run_zlevel_checked(part, 3, kStepDown, 0.5);
+  expect_clean(r, "relief seed 1020 R 3 z-level");
+}
+
 // The large meshes datasets/make-large-mesh.sh writes to the same folder are the soak's
 // (bench/corpus_soak.cpp --mesh): the corpus here is the files below 10 MB.
 constexpr std::uintmax_t kCorpusBytes = 10'000'000;
