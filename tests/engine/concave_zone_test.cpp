@@ -23,6 +23,7 @@
 #include "kernels/mesh/subdivide.hpp"
 #include "kernels/scan/envelope.hpp"
 #include "tests/engine/mesh_test_support.hpp"
+#include "tests/support/meshes.hpp"
 #include "tests/support/representation_variants.hpp"
 
 namespace ncpath {
@@ -58,27 +59,8 @@ TriangleMesh groove_block(double slope, double w, double len, int n, double dept
       m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
-  // The rim of the top, counter-clockwise seen from above, joined to the bottom's corners.
-  std::vector<std::uint32_t> rim;
-  for (int i = 0; i < n; ++i) rim.push_back(id(i, 0));
-  for (int j = 0; j < n; ++j) rim.push_back(id(n, j));
-  for (int i = n; i > 0; --i) rim.push_back(id(i, n));
-  for (int j = n; j > 0; --j) rim.push_back(id(0, j));
-  const auto base = std::uint32_t(m.vertices.size());
-  for (std::uint32_t v : rim) {
-    const Vec3 p(m.vertices[v].x(), m.vertices[v].y(), -depth);
-    m.vertices.push_back(p);
-  }
-  const auto nr = std::uint32_t(rim.size());
-  for (std::uint32_t k = 0; k < nr; ++k) {
-    const std::uint32_t a = rim[k], b = rim[(k + 1) % nr], a2 = base + k, b2 = base + (k + 1) % nr;
-    m.facets.push_back({a, a2, b2});
-    m.facets.push_back({a, b2, b});
-  }
-  const auto centre = std::uint32_t(m.vertices.size());
-  m.vertices.emplace_back(0, 0.5 * len, -depth);
-  for (std::uint32_t k = 0; k < nr; ++k)
-    m.facets.push_back({centre, base + (k + 1) % nr, base + k});
+  // The rim of the top walled down to the bottom, closed by a fan around its centre.
+  test::close_grid(m, n, -depth, 0, 0.5 * len);
   return m;
 }
 

@@ -2,6 +2,7 @@
 // Small meshes built in the tests: known shapes and random ones.
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "kernels/mesh/triangle_mesh.hpp"
 
@@ -23,6 +24,29 @@ TriangleMesh height_field(int n, double size, F&& f) {
       m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   return m;
+}
+
+// Closes the (n+1) x (n+1) vertex grid of m (vertex j (n+1) + i; counter-clockwise from
+// above) into a solid: its rim walled straight down to z = base_z and the base closed by a fan
+// around (cx, cy), wound outward.
+inline void close_grid(TriangleMesh& m, int n, double base_z, double cx, double cy) {
+  auto id = [n](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  std::vector<std::uint32_t> rim;
+  for (int i = 0; i < n; ++i) rim.push_back(id(i, 0));
+  for (int j = 0; j < n; ++j) rim.push_back(id(n, j));
+  for (int i = n; i > 0; --i) rim.push_back(id(i, n));
+  for (int j = n; j > 0; --j) rim.push_back(id(0, j));
+  const auto first = static_cast<std::uint32_t>(m.vertices.size());
+  for (std::uint32_t v : rim) m.vertices.emplace_back(m.vertices[v].x(), m.vertices[v].y(), base_z);
+  const auto centre = static_cast<std::uint32_t>(m.vertices.size());
+  m.vertices.emplace_back(cx, cy, base_z);
+  const auto k = static_cast<std::uint32_t>(rim.size());
+  for (std::uint32_t q = 0; q < k; ++q) {
+    const std::uint32_t r = (q + 1) % k;
+    m.facets.push_back({rim[q], first + q, first + r});
+    m.facets.push_back({rim[q], first + r, rim[r]});
+    m.facets.push_back({centre, first + r, first + q});
+  }
 }
 
 inline TriangleMesh random_height_field(int n, double size, double amplitude, unsigned seed) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "kernels/mesh/triangle_mesh.hpp"
+#include "tests/support/meshes.hpp"
 
 namespace ncpath::test {
 
@@ -208,23 +209,8 @@ inline TriangleMesh random_relief(std::uint64_t seed) {
       m.facets.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       m.facets.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
-  // The rim, counter-clockwise, walled down to the base, and the base closed by a fan.
-  std::vector<std::uint32_t> rim;
-  for (int i = 0; i < n; ++i) rim.push_back(id(i, 0));
-  for (int j = 0; j < n; ++j) rim.push_back(id(n, j));
-  for (int i = n; i > 0; --i) rim.push_back(id(i, n));
-  for (int j = n; j > 0; --j) rim.push_back(id(0, j));
-  const auto first = std::uint32_t(m.vertices.size());
-  for (std::uint32_t v : rim) m.vertices.emplace_back(m.vertices[v].x(), m.vertices[v].y(), base);
-  const auto centre = std::uint32_t(m.vertices.size());
-  m.vertices.emplace_back(0.5 * size, 0.5 * size, base);
-  const auto k = std::uint32_t(rim.size());
-  for (std::uint32_t q = 0; q < k; ++q) {
-    const std::uint32_t r = (q + 1) % k;
-    m.facets.push_back({rim[q], first + q, first + r});
-    m.facets.push_back({rim[q], first + r, rim[r]});
-    m.facets.push_back({centre, first + r, first + q});
-  }
+  // The rim walled down to the base, and the base closed by a fan.
+  close_grid(m, n, base, 0.5 * size, 0.5 * size);
   return m;
 }
 

@@ -75,12 +75,25 @@ inline double segment_z(const ScanSegmentRecord& s, double u) {
   }
 }
 
-inline void verify(const TriangleMesh& mesh, const Cutter& cutter, const ClChunk& cl,
+inline void verify(const MeshVerifier& verifier, const Cutter& cutter, const ClChunk& cl,
                    KernelRun& out) {
-  const MeshVerifier verifier(mesh);
   const MeshVerifyReport r = verify_moves(verifier, cutter, cl, MeshVerifyParams{});
   out.max_gouge = std::max(out.max_gouge, r.max_gouge);
   if (!r.error.empty()) out.error = r.error;
+}
+
+inline void verify(const TriangleMesh& mesh, const Cutter& cutter, const ClChunk& cl,
+                   KernelRun& out) {
+  verify(MeshVerifier(mesh), cutter, cl, out);
+}
+
+// As the raster and pencil jobs do (batch/jobs/): chords that would cut in lifted by the chord
+// guard, then the verifier; one index for both.
+inline void verify_guarded(const TriangleMesh& mesh, const Cutter& cutter, const ClChunk& cl,
+                           KernelRun& out) {
+  const auto verifier = std::make_shared<const MeshVerifier>(mesh);
+  ChordGuard guard(verifier, cutter);
+  verify(*verifier, cutter, guard.apply(cl), out);
 }
 
 inline double polygon_area(const std::vector<double>& xyz, std::size_t first, std::size_t n) {
@@ -210,9 +223,7 @@ inline KernelRun run_pencil_checked(const TriangleMesh& mesh, double radius, dou
     out.open_chains = r.stats.zlevel_open_chains;
     out.paths = r.stats.paths;
     out.length = r.stats.traced_length;
-    // As the pencil job does (batch/jobs/pencil_job.cpp): chords that would cut in lifted.
-    ChordGuard guard(std::make_shared<const MeshVerifier>(mesh), ball);
-    robustness_detail::verify(mesh, ball, guard.apply(pencil_chunk(r)), out);
+    robustness_detail::verify_guarded(mesh, ball, pencil_chunk(r), out);
   } catch (const std::exception& e) {
     out.error = e.what();
   }
@@ -231,8 +242,7 @@ inline KernelRun run_raster_checked(const TriangleMesh& mesh, double radius, dou
     ClChunk cl;
     RunControl control;
     run_raster(mesh, ball, p, [&](const ClChunk& c) { cl.append(c); }, control);
-    ChordGuard guard(std::make_shared<const MeshVerifier>(mesh), ball);
-    robustness_detail::verify(mesh, ball, guard.apply(cl), out);
+    robustness_detail::verify_guarded(mesh, ball, cl, out);
   } catch (const std::exception& e) {
     out.error = e.what();
   }
