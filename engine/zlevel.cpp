@@ -43,6 +43,104 @@ struct LevelOut {
   std::uint64_t kinds[3] = {0, 0, 0};
 };
 
+// An element of the sliced mesh as the given mesh's (the concave zone's copy maps back).
+ElementRef mesh_ref(const OffsetElements& el, const ZLevelOpParams& p, std::uint32_t id) {
+  const ElementRef r = element_ref(el, id);
+  return p.zone ? p.zone->kept.in_mesh(r) : r;
+}
+
+// One contour's segment records (path `path`, tip z) and its closed polyline: each segment
+// from its start, arcs by their circumscribed polygon within the tolerance and the arc's
+// clearance, with the contact code of each point.
+void contour_segments(const OffsetElements& el, const ZLevelOpParams& p, const ZContour& con,
+                      std::int64_t path, double z, std::vector<Vec2>& pts,
+                      std::vector<std::uint8_t>& contact, ZLevelChunk& ch) {
+  pts.clear();
+  contact.clear();
+  for (const ContourSeg& s : con.segs) {
+    circumscribed(s, std::min(p.tolerance, s.clearance), pts);
+    contact.resize(pts.size(), contact_code(el, s.element));
+    ZLevelSegmentRecord rec;
+    rec.path = path;
+    rec.kind = std::uint8_t(s.kind);
+    rec.shadow = s.shadow;
+    rec.element = mesh_ref(el, p, s.element);
+    rec.start = {s.a.x(), s.a.y(), z};
+    rec.end = {s.b.x(), s.b.y(), z};
+    if (s.kind != ContourSegKind::kLine)
+      rec.geometry = {s.centre.x(), s.centre.y(), s.r1, s.r2, std::atan2(s.axis.y(), s.axis.x()),
+                      s.t0, s.t1};
+    ch.segments.push_back(rec);
+  }
+  if (pts.empty()) return;
+  pts.push_back(pts.front());  // closed
+  contact.push_back(contact.front());
+}
+
+// The closed polyline as a cut path at z, after a one-point rapid to its start unless it is
+// the job's first path.
+void append_cut(const std::vector<Vec2>& pts, const std::vector<std::uint8_t>& contact, double z,
+                bool lead_rapid, ZLevelChunk& ch) {
+  if (lead_rapid) {
+    ch.cl.xyz.insert(ch.cl.xyz.end(), {pts[0].x(), pts[0].y(), z});
+    ch.cl.contact.push_back(contact[0]);
+    ch.cl.path_sizes.push_back(1);
+    ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kRapid));
+  }
+  for (const Vec2& q : pts) ch.cl.xyz.insert(ch.cl.xyz.end(), {q.x(), q.y(), z});
+  ch.cl.contact.insert(ch.cl.contact.end(), contact.begin(), contact.end());
+  ch.cl.path_sizes.push_back(std::uint32_t(pts.size()));
+  ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kCut));
+}
+
+// The contour's junctions (those in the concave zone, when one is given) as records at tip z;
+// zc is the ball centres' height the kernel used.
+void contour_junctions(const OffsetElements& el, const ZLevelOpParams& p, const ZContour& con,
+                       std::int64_t path, double z, double zc, LevelOut& out) {
+  for (const ZJunction& j : con.junctions) {
+    if (p.zone && !p.zone->holds(Vec3(j.position.x(), j.position.y(), zc))) continue;
+    ZLevelJunctionRecord rec;
+    rec.path = path;
+    rec.kind = std::uint8_t(j.kind);
+    rec.position = {j.position.x(), j.position.y(), z};
+    rec.b1 = {j.b1.x(), j.b1.y(), j.b1.z()};
+    rec.b2 = {j.b2.x(), j.b2.y(), j.b2.z()};
+    rec.element1 = mesh_ref(el, p, j.e1);
+    rec.element2 = mesh_ref(el, p, j.e2);
+    rec.angle = std::acos(std::clamp(j.b1.dot(j.b2), -1.0, 1.0));
+    out.chunk.junctions.push_back(rec);
+    ++out.kinds[std::size_t(j.kind)];
+  }
+}
+
+// Facets and reachable edges, highest reach first (ties by id). Unreachable edges are left
+// out: the kernel skips them (OffsetElements::edge_reachable), and their end vertices come
+// from the reachable edges there (a vertex is reachable only through one of its edges, which
+// reaches at least as high).
+std::vector<std::uint32_t> by_reach(const OffsetElements& el, const std::vector<double>& reach) {
+  const std::size_t nfe = el.facet_count() + el.edge_count();
+  std::vector<std::uint32_t> by_top;
+  by_top.reserve(nfe);
+  for (std::uint32_t id = 0; id < nfe; ++id)
+    if (id < el.facet_count() || el.edge_reachable.size() != el.edge_count() ||
+        el.edge_reachable[id - el.facet_count()])
+      by_top.push_back(id);
+  par::sort(by_top.begin(), by_top.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return reach[a] != reach[b] ? reach[a] > reach[b] : a < b;
+  });
+  return by_top;
+}
+
+// The tool-tip levels, highest first: the given ones, or every step_down below the top.
+std::vector<double> tip_levels(const ZLevelOpParams& p, double top_z, double bottom_z) {
+  std::vector<double> levels = p.levels;
+  if (p.step_down > 0)
+    for (int k = 1; top_z - k * p.step_down > bottom_z; ++k)
+      levels.push_back(top_z - k * p.step_down);
+  std::sort(levels.begin(), levels.end(), std::greater<>());
+  return levels;
+}
+
 }  // namespace
 
 ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
@@ -64,10 +162,6 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   const double grow = st.condition.max_move, R = cutter.radius + grow;
   const TriangleMesh& sliced = p.zone ? p.zone->kept.mesh : part;
   const OffsetElements el = build_offset_elements_parallel(sliced, R, false, Coplanar::kVertical);
-  auto ref = [&](std::uint32_t id) {
-    const ElementRef r = element_ref(el, id);
-    return p.zone ? p.zone->kept.in_mesh(r) : r;
-  };
   if (el.facet_count() == 0) throw std::invalid_argument("the mesh has no usable facet");
   st.facets = el.facet_count();
   st.edges = el.edge_count();
@@ -78,30 +172,14 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
   const ZLevelElementBoxes boxes = zlevel_element_boxes(el);
   ZLevelParams kernel;
   kernel.boxes = &boxes;
-  const std::size_t nfe = el.facet_count() + el.edge_count();
   const std::vector<double>& reach = boxes.reach;
-  // Unreachable edges are left out: the kernel skips them (OffsetElements::edge_reachable),
-  // and their end vertices come from the reachable edges there (a vertex is reachable only
-  // through one of its edges, which reaches at least as high).
-  std::vector<std::uint32_t> by_top;
-  by_top.reserve(nfe);
-  for (std::uint32_t id = 0; id < nfe; ++id)
-    if (id < el.facet_count() || el.edge_reachable.size() != el.edge_count() ||
-        el.edge_reachable[id - el.facet_count()])
-      by_top.push_back(id);
-  par::sort(by_top.begin(), by_top.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return reach[a] != reach[b] ? reach[a] > reach[b] : a < b;
-  });
+  const std::vector<std::uint32_t> by_top = by_reach(el, reach);
   const Aabb3 box = bounding_box(mesh);
   st.top_z = box.hi.z();
   st.bottom_z = box.lo.z();
   st.elements_s = el_clock.seconds();
 
-  std::vector<double> levels = p.levels;
-  if (p.step_down > 0)
-    for (int k = 1; st.top_z - k * p.step_down > st.bottom_z; ++k)
-      levels.push_back(st.top_z - k * p.step_down);
-  std::sort(levels.begin(), levels.end(), std::greater<>());
+  const std::vector<double> levels = tip_levels(p, st.top_z, st.bottom_z);
   st.levels = levels.size();
 
   // The levels of a chunk know the region of the previous chunk's last level to lie inside
@@ -136,60 +214,18 @@ ZLevelOpStats run_zlevel(const TriangleMesh& mesh, const Cutter& cutter,
     out.open_chains = r.stats.open_chains;
     ZLevelChunk& ch = out.chunk;
     std::vector<Vec2> pts;
+    std::vector<std::uint8_t> contact;
     for (std::size_t c = 0; c < r.contours.size(); ++c) {
       const ZContour& con = r.contours[c];
       const auto path = std::int64_t(c);  // shifted later
-      pts.clear();
-      std::vector<std::uint8_t> contact;
-      for (const ContourSeg& s : con.segs) {
-        const std::size_t before = pts.size();
-        circumscribed(s, std::min(p.tolerance, s.clearance), pts);
-        contact.resize(pts.size(), contact_code(el, s.element));
-        (void)before;
-        ZLevelSegmentRecord rec;
-        rec.path = path;
-        rec.kind = std::uint8_t(s.kind);
-        rec.shadow = s.shadow;
-        rec.element = ref(s.element);
-        rec.start = {s.a.x(), s.a.y(), z};
-        rec.end = {s.b.x(), s.b.y(), z};
-        if (s.kind != ContourSegKind::kLine)
-          rec.geometry = {s.centre.x(), s.centre.y(), s.r1, s.r2,
-                          std::atan2(s.axis.y(), s.axis.x()), s.t0, s.t1};
-        ch.segments.push_back(rec);
-      }
+      contour_segments(el, p, con, path, z, pts, contact, ch);
       if (pts.empty()) continue;
-      pts.push_back(pts.front());  // closed
-      contact.push_back(contact.front());
-      if (!ch.cl.path_sizes.empty() || i > 0) {
-        ch.cl.xyz.insert(ch.cl.xyz.end(), {pts[0].x(), pts[0].y(), z});
-        ch.cl.contact.push_back(contact[0]);
-        ch.cl.path_sizes.push_back(1);
-        ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kRapid));
-      }
-      for (const Vec2& q : pts) ch.cl.xyz.insert(ch.cl.xyz.end(), {q.x(), q.y(), z});
-      ch.cl.contact.insert(ch.cl.contact.end(), contact.begin(), contact.end());
-      ch.cl.path_sizes.push_back(std::uint32_t(pts.size()));
-      ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kCut));
+      append_cut(pts, contact, z, !ch.cl.path_sizes.empty() || i > 0, ch);
       out.points += pts.size();
       ch.contour_level.push_back(z);
       ch.contour_hole.push_back(con.hole);
       out.holes += con.hole;
-      for (const ZJunction& j : con.junctions) {
-        if (p.zone && !p.zone->holds(Vec3(j.position.x(), j.position.y(), zk + el.radius)))
-          continue;
-        ZLevelJunctionRecord rec;
-        rec.path = path;
-        rec.kind = std::uint8_t(j.kind);
-        rec.position = {j.position.x(), j.position.y(), z};
-        rec.b1 = {j.b1.x(), j.b1.y(), j.b1.z()};
-        rec.b2 = {j.b2.x(), j.b2.y(), j.b2.z()};
-        rec.element1 = ref(j.e1);
-        rec.element2 = ref(j.e2);
-        rec.angle = std::acos(std::clamp(j.b1.dot(j.b2), -1.0, 1.0));
-        ch.junctions.push_back(rec);
-        ++out.kinds[std::size_t(j.kind)];
-      }
+      contour_junctions(el, p, con, path, z, zk + el.radius, out);
     }
   };
 
