@@ -234,31 +234,29 @@ ScanStats run_scan(const TriangleMesh& mesh, const Cutter& cutter, const ScanPar
   return run_scan(se, cutter, p, sink, control);
 }
 
-ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParams& p,
-                   const std::function<void(const ScanChunk&)>& sink, RunControl& control) {
-  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
-  if (cutter.type != CutterType::kBall || cutter.radius != se.el[0].radius)
-    throw std::invalid_argument("tool: curve-based scanning needs the ball the elements are for");
-  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
-  ScanStats st;
-  const std::array<Family, 2> fam = {family(se, 0), family(se, 1)};
-  st.elements_s = se.build_s;
-  const OffsetElements& all = se.only_at[0].empty() ? se.el[0] : se.el[1];  // not a part
-  st.facets = all.facet_count();
-  st.edges = all.edge_count();
-  st.vertices = all.vertex_count();
-  st.facets_degenerate = se.mesh_facets - st.facets;
+namespace {
 
-  const std::array<double, 4> rect = scan_rect(se.box, p);
-  st.rect = rect;
-  st.floor_z = p.floor_z.value_or(se.box.lo.z());
+// A family's (u, v, z) in world coordinates: family 0 runs along x (planes y = v), family 1
+// along y (planes x = v, u and v swapped).
+std::array<double, 3> world(int f, double u, double v, double z) {
+  return f == 0 ? std::array<double, 3>{u, v, z} : std::array<double, 3>{v, u, z};
+}
 
-  struct FamilyRun {
-    int f;  // 0: x lines (planes y = v), 1: y lines (planes x = v)
-    double u0, u1, v0;
-    std::size_t planes;
-    std::int64_t first_path;  // cut path index of its first line
-  };
+std::array<double, 3> world_vec(int f, const Vec3& b) {
+  return f == 0 ? std::array<double, 3>{b.x(), b.y(), b.z()}
+                : std::array<double, 3>{b.y(), b.x(), b.z()};
+}
+
+struct FamilyRun {
+  int f;  // 0: x lines (planes y = v), 1: y lines (planes x = v)
+  double u0, u1, v0;
+  std::size_t planes;
+  std::int64_t first_path;  // cut path index of its first line
+};
+
+// The families to scan (p.families) over rect, with their plane counts (in st) and first path.
+std::vector<FamilyRun> plan_runs(const ScanElements& se, const ScanParams& p,
+                                 const std::array<double, 4>& rect, ScanStats& st) {
   std::vector<FamilyRun> runs;
   std::int64_t paths = 0;
   for (int f : {0, 1}) {
@@ -278,6 +276,74 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
     runs.push_back(r);
   }
   st.planes = st.planes_x + st.planes_y;
+  return runs;
+}
+
+struct LineOut {
+  ScanChunk chunk;
+  std::uint64_t pieces = 0, decisions = 0, crossings = 0, cut = 0, link = 0, hidden = 0;
+  std::uint64_t linear = 0;
+  std::uint64_t kinds[3] = {0, 0, 0};
+};
+
+// The plane's exact segments and junctions as records of cut path `path`, in cutting order
+// (reversed on a backward line).
+void line_records(const Family& F, int f, const PlaneOut& plane, double v, std::int64_t path,
+                  bool forward, LineOut& out) {
+  ScanChunk& ch = out.chunk;
+  const auto& segs = plane.curve.segments;
+  for (std::size_t k = 0; k < segs.size(); ++k) {
+    const CurveSegment& s = segs[forward ? k : segs.size() - 1 - k];
+    const SlicePiece& pc = plane.pieces[s.piece];
+    ScanSegmentRecord rec;
+    rec.path = path;
+    rec.kind = segment_kind(pc, s);
+    rec.element = element_ref(F.el, pc.element);
+    rec.start = world(f, s.x0, v, s.z0);
+    rec.end = world(f, s.x1, v, s.z1);
+    if (!forward) std::swap(rec.start, rec.end);
+    rec.geometry = segment_geometry(pc, s);
+    ch.segments.push_back(rec);
+  }
+  const auto& js = plane.curve.junctions;
+  for (std::size_t k = 0; k < js.size(); ++k) {
+    const CurveJunction& j = js[forward ? k : js.size() - 1 - k];
+    ScanJunctionRecord rec;
+    rec.path = path;
+    rec.kind = std::uint8_t(j.kind);
+    rec.position = world(f, j.x, v, j.z);
+    rec.b1 = world_vec(f, forward ? j.b1 : j.b2);
+    rec.b2 = world_vec(f, forward ? j.b2 : j.b1);
+    rec.element1 = element_ref(F.el, forward ? j.element1 : j.element2);
+    rec.element2 = element_ref(F.el, forward ? j.element2 : j.element1);
+    rec.angle = std::acos(std::clamp(j.b1.dot(j.b2), -1.0, 1.0));
+    ch.junctions.push_back(rec);
+    ++out.kinds[std::size_t(j.kind)];
+  }
+}
+
+}  // namespace
+
+ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParams& p,
+                   const std::function<void(const ScanChunk&)>& sink, RunControl& control) {
+  if (std::string e = validate(cutter); !e.empty()) throw std::invalid_argument("tool: " + e);
+  if (cutter.type != CutterType::kBall || cutter.radius != se.el[0].radius)
+    throw std::invalid_argument("tool: curve-based scanning needs the ball the elements are for");
+  if (std::string e = validate(p); !e.empty()) throw std::invalid_argument(e);
+  ScanStats st;
+  const std::array<Family, 2> fam = {family(se, 0), family(se, 1)};
+  st.elements_s = se.build_s;
+  const OffsetElements& all = se.only_at[0].empty() ? se.el[0] : se.el[1];  // not a part
+  st.facets = all.facet_count();
+  st.edges = all.edge_count();
+  st.vertices = all.vertex_count();
+  st.facets_degenerate = se.mesh_facets - st.facets;
+
+  const std::array<double, 4> rect = scan_rect(se.box, p);
+  st.rect = rect;
+  st.floor_z = p.floor_z.value_or(se.box.lo.z());
+
+  const std::vector<FamilyRun> runs = plan_runs(se, p, rect, st);
   const std::uint64_t total_planes = st.planes;
   std::uint64_t done_planes = 0;
 
@@ -286,13 +352,6 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
     const Family& F = fam[run.f];
     const Family& S = fam[1 - run.f];  // side planes: the other family at u0 and u1
     const double v_last = run.v0 + double(run.planes - 1) * p.interval;
-    const auto world = [&](double u, double v, double z) {
-      return run.f == 0 ? std::array<double, 3>{u, v, z} : std::array<double, 3>{v, u, z};
-    };
-    const auto world_vec = [&](const Vec3& b) {
-      return run.f == 0 ? std::array<double, 3>{b.x(), b.y(), b.z()}
-                        : std::array<double, 3>{b.y(), b.x(), b.z()};
-    };
     // Side curves (in S's frame: planes at u, parameter v).
     std::array<PlaneOut, 2> side;
     {
@@ -301,12 +360,6 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
       scan_plane(S, run.u1, run.v0, v_last, st.floor_z, ids, side[1]);
     }
 
-    struct LineOut {
-      ScanChunk chunk;
-      std::uint64_t pieces = 0, decisions = 0, crossings = 0, cut = 0, link = 0, hidden = 0;
-      std::uint64_t linear = 0;
-      std::uint64_t kinds[3] = {0, 0, 0};
-    };
     auto run_line = [&](std::size_t i, LineOut& out) {
       const double v = run.v0 + double(i) * p.interval;
       PlaneOut plane;
@@ -327,44 +380,14 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
       }
       ScanChunk& ch = out.chunk;
       for (std::size_t k = 0; k < pts.size(); ++k) {
-        const auto w = world(pts[k].x(), v, pts[k].y());
+        const auto w = world(run.f, pts[k].x(), v, pts[k].y());
         ch.cl.xyz.insert(ch.cl.xyz.end(), w.begin(), w.end());
       }
       ch.cl.contact.insert(ch.cl.contact.end(), contact.begin(), contact.end());
       ch.cl.path_sizes.push_back(std::uint32_t(pts.size()));
       ch.cl.path_kinds.push_back(std::uint8_t(PathKind::kCut));
       out.cut += pts.size();
-      // Exact segments and junctions, in cutting order.
-      const std::int64_t path = run.first_path + std::int64_t(i);
-      const auto& segs = plane.curve.segments;
-      for (std::size_t k = 0; k < segs.size(); ++k) {
-        const CurveSegment& s = segs[forward ? k : segs.size() - 1 - k];
-        const SlicePiece& pc = plane.pieces[s.piece];
-        ScanSegmentRecord rec;
-        rec.path = path;
-        rec.kind = segment_kind(pc, s);
-        rec.element = element_ref(F.el, pc.element);
-        rec.start = world(s.x0, v, s.z0);
-        rec.end = world(s.x1, v, s.z1);
-        if (!forward) std::swap(rec.start, rec.end);
-        rec.geometry = segment_geometry(pc, s);
-        ch.segments.push_back(rec);
-      }
-      const auto& js = plane.curve.junctions;
-      for (std::size_t k = 0; k < js.size(); ++k) {
-        const CurveJunction& j = js[forward ? k : js.size() - 1 - k];
-        ScanJunctionRecord rec;
-        rec.path = path;
-        rec.kind = std::uint8_t(j.kind);
-        rec.position = world(j.x, v, j.z);
-        rec.b1 = world_vec(forward ? j.b1 : j.b2);
-        rec.b2 = world_vec(forward ? j.b2 : j.b1);
-        rec.element1 = element_ref(F.el, forward ? j.element1 : j.element2);
-        rec.element2 = element_ref(F.el, forward ? j.element2 : j.element1);
-        rec.angle = std::acos(std::clamp(j.b1.dot(j.b2), -1.0, 1.0));
-        ch.junctions.push_back(rec);
-        ++out.kinds[std::size_t(j.kind)];
-      }
+      line_records(F, run.f, plane, v, run.first_path + std::int64_t(i), forward, out);
       if (i + 1 == run.planes) return;
       // Link at depth along the side to the next line: the side plane's exact curve.
       const PlaneOut& sp = side[forward ? 1 : 0];
@@ -373,7 +396,7 @@ ScanStats run_scan(const ScanElements& se, const Cutter& cutter, const ScanParam
       polyline_between(S, sp, v, v + p.interval, p.tolerance, lpts, lcontact);
       const double u = forward ? run.u1 : run.u0;
       for (const Vec2& q : lpts) {
-        const auto w = world(u, q.x(), q.y());
+        const auto w = world(run.f, u, q.x(), q.y());
         ch.cl.xyz.insert(ch.cl.xyz.end(), w.begin(), w.end());
       }
       ch.cl.contact.insert(ch.cl.contact.end(), lcontact.begin(), lcontact.end());
