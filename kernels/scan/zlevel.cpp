@@ -264,6 +264,59 @@ ZLevelElementBoxes zlevel_element_boxes(const OffsetElements& el) {
   return out;
 }
 
+namespace {
+
+// The splits where active curves i and j cross or touch (both curves' parameters); line
+// crossings carry their orientation, for the classification. Returns the number of hits.
+std::size_t crossing_splits(const std::vector<Curve>& act, std::uint32_t i, std::uint32_t j,
+                            const Level& lv, std::vector<Hit>& hits, std::vector<Split>& splits) {
+  hits.clear();
+  bool coincident;
+  const Curve &C = act[i], &D = act[j];
+  intersect_curves(C, D, lv, hits, coincident);
+  const bool lines = !coincident && C.kind == CurveKind::kLine && D.kind == CurveKind::kLine &&
+                     cross2(D.dir, C.dir) != 0;
+  const std::int8_t enter = !lines ? 0 : cross2(D.dir, C.dir) > 0 ? 1 : -1;
+  for (const Hit& h : hits) {
+    // A T-junction (one line ends on the other) has no orientation: the lines need not
+    // cross there.
+    const bool cross = lines && !h.touch;
+    const std::int8_t e = cross ? enter : 0;
+    splits.push_back({i, h.sc, h.p, cross ? j : kNone, e});
+    splits.push_back({j, h.sd, h.p, cross ? i : kNone, std::int8_t(-e)});
+  }
+  return hits.size();
+}
+
+// Splits by curve, then parameter, then position (a total order: any input order).
+void sort_splits(std::vector<Split>& splits) {
+  std::sort(splits.begin(), splits.end(), [](const Split& a, const Split& b) {
+    if (a.curve != b.curve) return a.curve < b.curve;
+    if (a.s != b.s) return a.s < b.s;
+    if (a.p.x() != b.p.x()) return a.p.x() < b.p.x();
+    return a.p.y() < b.p.y();
+  });
+}
+
+// Each arc's clearance (ContourSeg::clearance, arc_clearance): how far its circumscribed
+// polygon may bulge, at most `cap`, without entering the regions other than its own and its
+// neighbours'.
+void set_clearances(double cap, const Grid& grid, const CellLists& region_cells,
+                    const std::vector<Region>& regions, const std::vector<Box4f>& rbox,
+                    const Level& lv, ZLevelResult& result) {
+  for (ZContour& c : result.contours)
+    for (std::size_t i = 0; i < c.segs.size(); ++i) {
+      ContourSeg& s = c.segs[i];
+      if (s.kind == ContourSegKind::kLine) continue;
+      const std::size_t m = c.segs.size();
+      const std::array<std::uint32_t, 3> skip = {s.element, c.segs[(i + m - 1) % m].element,
+                                                 c.segs[(i + 1) % m].element};
+      s.clearance = arc_clearance(s, skip, cap, grid, region_cells, regions, rbox, lv);
+    }
+}
+
+}  // namespace
+
 ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
                              double tip_z, const ZLevelParams& params) {
   ZLevelResult result;
@@ -520,30 +573,10 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     std::vector<Hit> hits;
     for_each_pair([&](std::uint32_t i, std::uint32_t j) {
       ++st.pairs;
-      hits.clear();
-      bool coincident;
-      const Curve &C = act[i], &D = act[j];
-      intersect_curves(C, D, lv, hits, coincident);
-      const bool lines = !coincident && C.kind == CurveKind::kLine && D.kind == CurveKind::kLine &&
-                         cross2(D.dir, C.dir) != 0;
-      const std::int8_t enter = !lines ? 0 : cross2(D.dir, C.dir) > 0 ? 1 : -1;
-      for (const Hit& h : hits) {
-        // A T-junction (one line ends on the other) has no orientation: the lines need not
-        // cross there.
-        const bool cross = lines && !h.touch;
-        const std::int8_t e = cross ? enter : 0;
-        splits.push_back({i, h.sc, h.p, cross ? j : kNone, e});
-        splits.push_back({j, h.sd, h.p, cross ? i : kNone, std::int8_t(-e)});
-      }
-      st.crossings += hits.size();
+      st.crossings += crossing_splits(act, i, j, lv, hits, splits);
     });
   }
-  std::sort(splits.begin(), splits.end(), [](const Split& a, const Split& b) {
-    if (a.curve != b.curve) return a.curve < b.curve;
-    if (a.s != b.s) return a.s < b.s;
-    if (a.p.x() != b.p.x()) return a.p.x() < b.p.x();
-    return a.p.y() < b.p.y();
-  });
+  sort_splits(splits);
 
   // The pieces between consecutive splits; the contours are the boundaries of the faces of
   // their planar map that lie outside U.
@@ -552,16 +585,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, keep);
   build_loops(el, lv, regions, act, pieces, keep, result);
   if (params.clearance_cap > 0)
-    for (ZContour& c : result.contours)
-      for (std::size_t i = 0; i < c.segs.size(); ++i) {
-        ContourSeg& s = c.segs[i];
-        if (s.kind == ContourSegKind::kLine) continue;
-        const std::size_t m = c.segs.size();
-        const std::array<std::uint32_t, 3> skip = {s.element, c.segs[(i + m - 1) % m].element,
-                                                   c.segs[(i + 1) % m].element};
-        s.clearance = arc_clearance(s, skip, params.clearance_cap, grid, region_cells, regions,
-                                    rbox, lv);
-      }
+    set_clearances(params.clearance_cap, grid, region_cells, regions, rbox, lv, result);
   return result;
 }
 
