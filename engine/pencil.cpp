@@ -370,12 +370,28 @@ Pieces refine_joined(const Joined& joined, const ScanElements& se,
   return {std::move(pieces), std::move(normals)};
 }
 
+// Per crease point, the unit direction away from both its contacts: the bisector of the
+// contact normals b1, b2 (from the part to the ball's centre), at cos(beta / 2) = |b1 + b2| / 2
+// to each; up where they nearly oppose.
+std::vector<Vec3> away_from_contacts(const std::vector<std::array<Vec3, 2>>& b) {
+  std::vector<Vec3> out;
+  out.reserve(b.size());
+  for (const auto& n : b) {
+    const Vec3 s = n[0] + n[1];
+    const bool towards_both = 0.5 * s.norm() > tol::kLiftMinCosine;
+    out.push_back(towards_both ? Vec3(s.normalized()) : Vec3(Vec3::UnitZ()));
+  }
+  return out;
+}
+
 // Never below the CL surface: the ball swept along every chord (exact), a chord that touches
-// lifted. A chord that would need more than `leave` has left the crease (a link between two
-// creases the refinement could not bridge): the piece is split there instead of lifted, so
-// that pencil paths stay on creases.
-void check_pieces(Pieces& pc, const MeshDistance& distance, const DropIndex& index,
-                  const PencilParams& p, double R, double floor_z, PencilStats& st) {
+// lifted away from both contacts (a chord of a crease curving around a vertical edge at a
+// floor cuts into the edge sideways, which no vertical lift clears). A chord that would need
+// more than `leave` has left the crease (a link between two creases the refinement could not
+// bridge), and one with an end the ball cannot reach from above: the piece is split there
+// instead, so that pencil paths stay on creases and every point is a CL point.
+void check_pieces(Pieces& pc, const PartProbe& part, const PencilParams& p, PencilStats& st) {
+  const double R = part.radius, floor_z = part.floor_z;
   std::vector<std::vector<Vec3>>& pieces = pc.paths;
   std::vector<std::vector<std::array<Vec3, 2>>>& normals = pc.normals;
   Stopwatch check_clock;
@@ -388,7 +404,15 @@ void check_pieces(Pieces& pc, const MeshDistance& distance, const DropIndex& ind
     std::vector<Vec3> cur = pieces[k];
     const auto& cur_b = normals[k];
     std::vector<bool> touching;
-    lifted[k] += lift_swept(distance, index, floor_z, R, leave, spacing, cur, 24, &touching);
+    const std::vector<Vec3> away = away_from_contacts(cur_b);
+    lifted[k] += lift_swept(part.distance, part.index, floor_z, R, leave, spacing, cur, 24,
+                            &touching, &away);
+    // Every point a ball can reach from above (its shank free): the chord guard's vertical
+    // moves and the verifier assume it of every CL point.
+    std::vector<bool> reached(cur.size());
+    for (std::size_t i = 0; i < cur.size(); ++i) reached[i] = reachable(part, cur[i]);
+    for (std::size_t i = 0; i < touching.size(); ++i)
+      if (!reached[i] || !reached[i + 1]) touching[i] = true;
     std::size_t from = 0;
     for (std::size_t i = 0; i <= touching.size(); ++i) {
       if (i < touching.size() && !touching[i]) continue;
@@ -513,7 +537,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const PartProbe part{index, distance, cutter.radius, floor_z, box.hi.z()};
   const ZLevelCreaseRefine refine_z{mesh, index, part, p.tolerance, cutter.radius, floor_z};
   Pieces pieces = refine_joined(join_chains(chains, p), se, refine_z, p, min_angle, st);
-  check_pieces(pieces, distance, index, p, cutter.radius, floor_z, st);
+  check_pieces(pieces, part, p, st);
   order_pieces(pieces, p, res);
   return res;
 }

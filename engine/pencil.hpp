@@ -21,11 +21,14 @@
 //      elements, found by the exact envelope of that plane near the chord), recursively;
 //   4. safety: the ball is swept along every chord exactly (engine/surface_check.hpp
 //      lift_swept, MeshDistance::march with radius R - 1e-7); a chord whose ball touches
-//      the part is lifted at both ends, first by its largest drop-cutter deficit at samples
-//      a tenth of the interval apart, then in doubling steps until clear; a chord that
-//      would need more than max(10 tolerance, 0.05 mm) has left the crease (two creases the
-//      refinement could not bridge, or a wall in the way) and the piece is split there, so
-//      the path never gouges (to 1e-7 mm);
+//      the part has both ends moved away from both contacts (along b1 + b2; straight up
+//      where that would leave a point below the drop-cutter surface), first by its largest
+//      penetration at samples a tenth of the interval apart over the cosine to the contact
+//      normal, then in doubling steps until clear; a chord that would need more than
+//      max(10 tolerance, 0.05 mm) has left the crease (two creases the refinement could not
+//      bridge, or a wall in the way), or has an end the ball cannot reach from above
+//      (surface_check.hpp reachable), and the piece is split there, so the path never
+//      gouges (to 1e-7 mm);
 //   5. pieces closer than `merge_distance` end to end are joined, pieces shorter than
 //      `min_length` dropped, and the rest ordered and oriented greedily to shorten the air
 //      moves between them. With a cut `direction` (climb or conventional, spindle M3:

@@ -29,7 +29,8 @@ bool reachable(const PartProbe& part, const Vec3& q) {
 
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
                        double radius, double max_lift, double spacing, std::vector<Vec3>& pts,
-                       int rounds, std::vector<bool>* touching) {
+                       int rounds, std::vector<bool>* touching,
+                       const std::vector<Vec3>* directions) {
   const std::size_t n = pts.size();
   std::vector<bool> raised(n, false);
   for (std::size_t i = 0; i < n; ++i)
@@ -39,8 +40,35 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
     }
   const Vec3 up(0, 0, radius);
   const double r = radius - tol::kSweepSlack;
-  // Sweeps chord i; the lift it needs (0 when clear): the drop-cutter deficit where the ball
-  // first touches, at least the ball's penetration there, plus the slack.
+  // The lift chord i needs where its tip is at `tip`, plus the slack: along z, the
+  // drop-cutter deficit and at least the ball's penetration; along the chord's own direction
+  // u, the penetration over the cosine between u and the contact normal (moving by that along
+  // u clears the contact).
+  auto need = [&](std::size_t i, const Vec3& tip) {
+    double d = 0;
+    if (!directions) {
+      d = std::max(surface_deficit(index, floor_z, tip),
+                   radius - distance.closest(tip + up, radius).distance);
+    } else {
+      const MeshDistance::Closest c = distance.closest(tip + up, radius);
+      if (c.distance < radius) {
+        const Vec3 u = ((*directions)[i] + (*directions)[i + 1]).normalized();
+        const Vec3 normal = (tip + up - c.point) / std::max(c.distance, tol::kSweepSlack);
+        d = (radius - c.distance) / std::max(normal.dot(u), tol::kLiftMinCosine);
+      }
+    }
+    return std::max(d, tol::kSweepSlack) + tol::kSweepSlack;
+  };
+  // Point i lifted by `by` along its direction; straight up when that would leave it below
+  // the drop-cutter surface (under an overhang's edge, where no 3-axis ball can go).
+  auto moved = [&](std::size_t i, double by) {
+    if (directions) {
+      const Vec3 q = pts[i] + by * (*directions)[i];
+      if (surface_deficit(index, floor_z, q) <= 0) return q;
+    }
+    return Vec3(pts[i] + Vec3(0, 0, by));
+  };
+  // Sweeps chord i; the lift it needs where the ball first touches (0 when clear).
   auto sweep = [&](std::size_t i) {
     const Vec3 a = pts[i] + up, b = pts[i + 1] + up;
     const double len = (b - a).norm();
@@ -51,9 +79,7 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
       s = distance.march(a, (b - a) / len, r, len);
     if (!s) return 0.0;
     const Vec3 tip = pts[i] + (pts[i + 1] - pts[i]) * (len > 0 ? *s / len : 0.0);
-    const double d = std::max(surface_deficit(index, floor_z, tip),
-                              radius - distance.closest(tip + up, radius).distance);
-    return std::max(d, tol::kSweepSlack) + tol::kSweepSlack;
+    return need(i, tip);
   };
   // The first contact is where the dip starts, not where it is deepest: a chord touching
   // again is lifted by at least twice its previous lift (a dip of depth h is cleared within
@@ -76,9 +102,11 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
         // where the dip starts.
         const Vec3 a = pts[i], b = pts[i + 1];
         const int m = std::max(2, int(std::ceil((b - a).norm() / spacing)));
-        for (int j = 1; j < m && d <= max_lift; ++j)
-          d = std::max(d, surface_deficit(index, floor_z, a + (b - a) * (double(j) / m)) +
-                              tol::kSweepSlack);
+        for (int j = 1; j < m && d <= max_lift; ++j) {
+          const Vec3 q = a + (b - a) * (double(j) / m);
+          d = std::max(d, directions ? need(i, q)
+                                     : surface_deficit(index, floor_z, q) + tol::kSweepSlack);
+        }
         sampled[i] = true;
       } else {
         d = std::max(d, 2 * last[i]);  // what is left between the samples: doubling
@@ -97,7 +125,7 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
     if (!any) break;
     for (std::size_t i = 0; i < n; ++i)
       if (lift[i] > 0) {
-        pts[i].z() += lift[i];
+        pts[i] = moved(i, lift[i]);
         raised[i] = true;
         if (i > 0) check[i - 1] = true;
         if (i < check.size()) check[i] = true;

@@ -54,10 +54,14 @@ bool reachable(const PartProbe& part, const Vec3& q);
 // up to more than max_lift (mm: a wall in the way, or a link that left the crease) is not
 // lifted further. Points below floor_z are raised to it. Returns the number of points
 // raised; `touching` (when given) gets one flag per chord: still touching at the end
-// (callers must not cut such a chord).
+// (callers must not cut such a chord). `directions` (when given): per point, the unit
+// direction it is lifted in instead of +z (the pencil's: away from both contacts, which also
+// clears a ball rolling around a vertical edge, where no vertical lift can); the lift is
+// then the ball's penetration over the cosine between that direction and the contact normal.
 std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, double floor_z,
                        double radius, double max_lift, double spacing,
                        std::vector<Vec3>& points, int rounds = 24,
-                       std::vector<bool>* touching = nullptr);
+                       std::vector<bool>* touching = nullptr,
+                       const std::vector<Vec3>* directions = nullptr);
 
 }  // namespace ncpath

@@ -547,6 +547,11 @@ inline constexpr double kReachSlack = kSurfaceSlack;
 // on it.
 inline constexpr double kSweepSlack = 1e-7;
 
+// lift_swept() along a point's own direction: the smallest cosine between that direction and
+// the contact normal it divides a penetration by (a contact almost square to the direction is
+// cleared in a few doubling rounds or not at all, instead of by one huge lift).
+inline constexpr double kLiftMinCosine = 0.1;
+
 // mm. Pictures (batch/preview/preview.hpp): the smallest extent a picture is fitted to, so
 // that a single point or a straight line still gets a finite scale; and the smallest height
 // range a colour ramp spans (a flat part or paths all at one height take its first colour).

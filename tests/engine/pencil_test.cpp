@@ -3,12 +3,14 @@
 // angle 2 atan(a) is above the threshold, and none below; a box pocket gives the four
 // floor-wall creases, the four vertical wall-wall creases (found by the z-levels) and, above
 // them, the creases of the rim edges' cylinders, every path point within the tolerance of
-// one of them; a faceted hemisphere (convex) gives none; no path point or chord
+// one of them; a boss on a plate gives the loop around its foot, arcs about its vertical
+// edges included; a faceted hemisphere (convex) gives none; no path point or chord
 // gouges (brute-force distance from the ball to the mesh).
 #include "engine/pencil.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -89,6 +91,89 @@ TEST(Pencil, BoxPocketFloorAndCornerCreases) {
   // The floor creases form the square of side 2c; the corners rise (z-levels every 0.3 mm).
   EXPECT_NEAR(floor_length, 8 * c, 1.0);
   EXPECT_GT(corner_length, 4 * 1.0);
+  test_meshes::expect_no_gouge(mesh, r.paths, R);
+}
+
+// A rectangular boss (2a x 2b, height h) standing on a plate (open mesh, top at z 0).
+TriangleMesh boss_on_plate(double a, double b, double h) {
+  TriangleMesh m;
+  const double o = 20;
+  m.vertices = {{-o, -o, 0}, {o, -o, 0}, {o, o, 0}, {-o, o, 0},  // 0-3 plate
+                {-a, -b, 0}, {a, -b, 0}, {a, b, 0}, {-a, b, 0},  // 4-7 boss foot
+                {-a, -b, h}, {a, -b, h}, {a, b, h}, {-a, b, h}}; // 8-11 boss top
+  m.facets = {{0, 1, 5},  {0, 5, 4},   {1, 2, 6},  {1, 6, 5},
+              {2, 3, 7},  {2, 7, 6},   {3, 0, 4},  {3, 4, 7},  // plate around the boss
+              {8, 9, 10}, {8, 10, 11},                         // boss top
+              {4, 5, 9},  {4, 9, 8},   {5, 6, 10}, {5, 10, 9},
+              {6, 7, 11}, {6, 11, 10}, {7, 4, 8},  {7, 8, 11}};  // boss walls
+  return m;
+}
+
+// The crease at a boss's foot: the ball on the plate touching the boss runs around it at tip
+// z 0, its centre on the boss's outline offset by R, whose corners are quarter circles about
+// the vertical edges (every chord of them cuts the edge sideways: lifting straight up cannot
+// clear it, moving away from both contacts can). One loop of length 4a + 4b + 2 pi R.
+TEST(Pencil, BossFootIncludingTheArcsAroundItsVerticalEdges) {
+  const double a = 8, b = 5, h = 4, R = 3;
+  PencilParams p;
+  p.interval = 0.5;
+  p.step_down = 0;
+  RunControl control;
+  const TriangleMesh mesh = boss_on_plate(a, b, h);
+  const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+  // Distance from q to the crease: the outline offset by R at z 0.
+  auto crease_distance = [&](const Vec3& q) {
+    const double dx = std::max(0.0, std::abs(q.x()) - a), dy = std::max(0.0, std::abs(q.y()) - b);
+    return std::hypot(std::hypot(dx, dy) - R, q.z());
+  };
+  ASSERT_FALSE(r.paths.empty());
+  for (const auto& path : r.paths)
+    for (const Vec3& q : path)
+      EXPECT_LE(crease_distance(q), p.tolerance) << "off the crease: " << q.transpose();
+  // Every point of the loop (sampled every 0.01 mm) lies within the tolerance of a chord.
+  auto path_distance = [&](const Vec3& s) {
+    double d = INFINITY;
+    for (const auto& path : r.paths)
+      for (std::size_t i = 1; i < path.size(); ++i) {
+        const Vec3 u = path[i] - path[i - 1];
+        const double t = std::clamp((s - path[i - 1]).dot(u) / u.squaredNorm(), 0.0, 1.0);
+        d = std::min(d, (path[i - 1] + t * u - s).norm());
+      }
+    return d;
+  };
+  const double loop = 4 * a + 4 * b + 2 * std::numbers::pi * R;
+  double worst = 0;
+  for (int k = 0; k < int(loop / 0.01); ++k) {
+    // Arc-length parameter along the loop: the side x = a + R upwards, then the arc about
+    // (a, b), and so on around the four sides and corners.
+    double t = k * 0.01;
+    const double sides[4] = {2 * b, 2 * a, 2 * b, 2 * a}, arc = 0.5 * std::numbers::pi * R;
+    const Vec2 corner[4] = {{a, b}, {-a, b}, {-a, -b}, {a, -b}};
+    Vec3 q;
+    for (int e = 0; e < 4; ++e) {
+      const double ang = 0.5 * std::numbers::pi * e;
+      const Vec2 n(std::cos(ang), std::sin(ang)), along(-n.y(), n.x());
+      if (t <= sides[e]) {
+        const Vec2 xy = corner[(e + 3) % 4] + R * n + t * along;
+        q = Vec3(xy.x(), xy.y(), 0);
+        break;
+      }
+      t -= sides[e];
+      if (t <= arc) {
+        const double phi = ang + t / R;
+        q = Vec3(corner[e].x() + R * std::cos(phi), corner[e].y() + R * std::sin(phi), 0);
+        break;
+      }
+      t -= arc;
+    }
+    worst = std::max(worst, path_distance(q));
+  }
+  EXPECT_LE(worst, p.tolerance);
+  // Each family traces an arc where its planes cross it more steeply than 45 degrees, a
+  // chain reaching at most one plane beyond: neighbouring sides' pieces overlap on each arc
+  // by at most 2 interval / sin 45 degrees (1.18 mm each here: traced twice, not joined).
+  EXPECT_GE(r.stats.traced_length, loop - p.tolerance);
+  EXPECT_LE(r.stats.traced_length, loop + 4 * 2 * p.interval / std::sin(std::numbers::pi / 4));
   test_meshes::expect_no_gouge(mesh, r.paths, R);
 }
 
