@@ -163,6 +163,21 @@ TEST(KnownOpenZLevel, DISABLED_ReliefSeed1020ClosesEveryContour) {
   expect_clean(r, "relief seed 1020 R 3 z-level");
 }
 
+// Found by the soak (2026-11-29, seeds 2000-2199), not fixed yet: reliefs with vertex noise
+// 1e-11 scanned on a drive plane within 1e-11 mm of a boundary side wall (x = 40, y = 0):
+// the scan segments fall to the floor for 0.13 and 0.8 mm (cuts of 2.30 and 1.36 mm, stopped
+// by the verifier). Seed 2077 on the plane x = 40 - 1e-11 (a dev probe): between y 13.65
+// and 13.72 the trimmed envelope has only the floor where the untrimmed one has the wall's
+// top-edge cylinder; its wedge trim drops it (the in-plane contact direction lies on the
+// wedge's side) while the adjacent facet's offset does not reach the plane. Enable when fixed.
+TEST(KnownScanGouge, DISABLED_ReliefDrivePlaneAtASideWall) {
+  const Generated relief{"relief", &test::random_relief, 0};
+  for (int seed : {2077, 2140}) {
+    const Case c = make_case(relief, seed);
+    expect_clean(test::run_scan_checked(c.variant, c.R, kScanInterval), c.what + " scan");
+  }
+}
+
 // The large meshes datasets/make-large-mesh.sh writes to the same folder are the soak's
 // (bench/corpus_soak.cpp --mesh): the corpus here is the files below 10 MB.
 constexpr std::uintmax_t kCorpusBytes = 10'000'000;
