@@ -163,14 +163,13 @@ TEST(KnownOpenZLevel, DISABLED_ReliefSeed1020ClosesEveryContour) {
   expect_clean(r, "relief seed 1020 R 3 z-level");
 }
 
-// Found by the soak (2026-11-29, seeds 2000-2199), not fixed yet: reliefs with vertex noise
-// 1e-11 scanned on a drive plane within 1e-11 mm of a boundary side wall (x = 40, y = 0):
-// the scan segments fall to the floor for 0.13 and 0.8 mm (cuts of 2.30 and 1.36 mm, stopped
-// by the verifier). Seed 2077 on the plane x = 40 - 1e-11 (a dev probe): between y 13.65
-// and 13.72 the trimmed envelope has only the floor where the untrimmed one has the wall's
-// top-edge cylinder; its wedge trim drops it (the in-plane contact direction lies on the
-// wedge's side) while the adjacent facet's offset does not reach the plane. Enable when fixed.
-TEST(KnownScanGouge, DISABLED_ReliefDrivePlaneAtASideWall) {
+// Seeds the soak found (2026-11-29, seeds 2000-2199): reliefs with vertex noise 1e-11 whose
+// surface dips below the base, scanned on a drive plane within 1e-11 mm of a side wall. The
+// base fan's facets share one offset normal (a coplanar region) while the wedge of the
+// base's rim edge was taken from the facet's own plane, 1.9e-12 apart; with the edge at
+// 1e-11 rad to the plane that moved the cylinder's hand-over to the facet by 0.13 mm, where
+// neither was kept (scan cuts of 2.30 and 1.36 mm). Scan clean and equal to the drop-cutter.
+TEST(FormerScanGouges, ReliefDrivePlaneAtASideWall) {
   const Generated relief{"relief", &test::random_relief, 0};
   for (int seed : {2077, 2140}) {
     const Case c = make_case(relief, seed);
