@@ -52,7 +52,11 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
     } else {
       const MeshDistance::Closest c = distance.closest(tip + up, radius);
       if (c.distance < radius) {
-        const Vec3 u = ((*directions)[i] + (*directions)[i + 1]).normalized();
+        // The chord's direction: its ends' mean, the start's where they oppose (a zero mean
+        // would give NaN, which reads as clear).
+        const Vec3 sum = (*directions)[i] + (*directions)[i + 1];
+        const Vec3 u = sum.norm() > tol::kLiftMinCosine ? Vec3(sum.normalized())
+                                                        : (*directions)[i];
         const Vec3 normal = (tip + up - c.point) / std::max(c.distance, tol::kSweepSlack);
         d = (radius - c.distance) / std::max(normal.dot(u), tol::kLiftMinCosine);
       }
