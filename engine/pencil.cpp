@@ -370,20 +370,6 @@ Pieces refine_joined(const Joined& joined, const ScanElements& se,
   return {std::move(pieces), std::move(normals)};
 }
 
-// Per crease point, the unit direction away from both its contacts: the bisector of the
-// contact normals b1, b2 (from the part to the ball's centre), at cos(beta / 2) = |b1 + b2| / 2
-// to each; up where they nearly oppose.
-std::vector<Vec3> away_from_contacts(const std::vector<std::array<Vec3, 2>>& b) {
-  std::vector<Vec3> out;
-  out.reserve(b.size());
-  for (const auto& n : b) {
-    const Vec3 s = n[0] + n[1];
-    const bool towards_both = 0.5 * s.norm() > tol::kLiftMinCosine;
-    out.push_back(towards_both ? Vec3(s.normalized()) : Vec3(Vec3::UnitZ()));
-  }
-  return out;
-}
-
 // Never below the CL surface: the ball swept along every chord (exact), a chord that touches
 // lifted away from both contacts (a chord of a crease curving around a vertical edge at a
 // floor cuts into the edge sideways, which no vertical lift clears). A chord that would need

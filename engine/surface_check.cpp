@@ -144,4 +144,15 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
   return std::size_t(std::count(raised.begin(), raised.end(), true));
 }
 
+std::vector<Vec3> away_from_contacts(const std::vector<std::array<Vec3, 2>>& b) {
+  std::vector<Vec3> out;
+  out.reserve(b.size());
+  for (const auto& n : b) {
+    const Vec3 s = n[0] + n[1];
+    const bool towards_both = 0.5 * s.norm() > tol::kLiftMinCosine;
+    out.push_back(towards_both ? Vec3(s.normalized()) : Vec3(Vec3::UnitZ()));
+  }
+  return out;
+}
+
 }  // namespace ncpath

@@ -3,6 +3,7 @@
 // surface of the cutter), checked by the exact point drop-cutter (engine/drop_index.hpp).
 // Used by the clean-up operations, whose points come from crease tracing and ray marching
 // rather than from the drop-cutter itself.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -63,5 +64,10 @@ std::size_t lift_swept(const MeshDistance& distance, const DropIndex& index, dou
                        std::vector<Vec3>& points, int rounds = 24,
                        std::vector<bool>* touching = nullptr,
                        const std::vector<Vec3>* directions = nullptr);
+
+// lift_swept()'s directions for the pencil's crease points: per point, the unit direction
+// away from both its contacts, the bisector of the contact normals b1, b2 (from the part to
+// the ball's centre), at cos(beta / 2) = |b1 + b2| / 2 to each; up where they nearly oppose.
+std::vector<Vec3> away_from_contacts(const std::vector<std::array<Vec3, 2>>& b);
 
 }  // namespace ncpath
