@@ -5,7 +5,6 @@
 #include <map>
 #include <numeric>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -14,6 +13,7 @@
 #include "engine/mesh_distance.hpp"
 #include "engine/parallel.hpp"
 #include "engine/pencil_crease.hpp"
+#include "engine/pencil_outline.hpp"
 #include "engine/scan.hpp"
 #include "engine/surface_check.hpp"
 #include "engine/zlevel.hpp"
@@ -21,32 +21,6 @@
 #include "kernels/scan/envelope.hpp"
 
 namespace ncpath {
-
-std::string validate(const PencilParams& p) {
-  std::ostringstream os;
-  auto positive = [&](const char* key, double v) {
-    if (os.tellp() == 0 && !(std::isfinite(v) && v > 0))
-      os << key << " must be a positive number of mm, got " << v;
-  };
-  positive("interval", p.interval);
-  positive("tolerance", p.tolerance);
-  if (os.tellp() == 0 && !(std::isfinite(p.step_down) && p.step_down >= 0))
-    os << "step_down must be >= 0 mm (0 = no z-levels), got " << p.step_down;
-  if (os.tellp() == 0 && !(std::isfinite(p.min_angle_deg) && p.min_angle_deg > 0 &&
-                           p.min_angle_deg < 180))
-    os << "min_angle must be between 0 and 180 degrees, got " << p.min_angle_deg;
-  if (os.tellp() == 0 && !(std::isfinite(p.merge_distance) && p.merge_distance >= 0))
-    os << "merge_distance must be >= 0 mm (0 = twice the interval), got " << p.merge_distance;
-  if (os.tellp() == 0 && !(std::isfinite(p.min_length) && p.min_length >= 0))
-    os << "min_length must be >= 0 mm, got " << p.min_length;
-  if (os.tellp() == 0 && !(std::isfinite(p.margin) && p.margin >= 0))
-    os << "margin must be >= 0 mm, got " << p.margin;
-  if (os.tellp() == 0 && p.floor_z && !std::isfinite(*p.floor_z))
-    os << "floor_z must be a finite number of mm";
-  if (os.tellp() == 0 && !std::isfinite(p.stock))
-    os << "stock must be a finite number of mm, got " << p.stock;
-  return os.str();
-}
 
 namespace {
 
@@ -145,7 +119,7 @@ Candidates drive_plane_candidates(const ScanElements& se, const Cutter& cutter,
   sp.families = ScanFamilies::kBoth;
   sp.interval = p.interval;
   sp.tolerance = p.tolerance;
-  sp.margin = p.margin;
+  sp.margin = pencil_reach(p, cutter.radius);
   sp.floor_z = floor_z;
   if (slice) sp.rect = slice->rect;
   std::vector<ScanJunctionRecord> js;
@@ -185,13 +159,15 @@ struct Kept {
   std::array<std::vector<ElementPair>, 3> refs;
 };
 
-// Pencil points: the candidates whose bi-contact angle reaches min_angle and whose two
-// contacts lie within the tolerance of the part (res.points), and the family that traces each.
+// Pencil points: the candidates whose bi-contact angle reaches min_angle, whose two contacts
+// lie within the tolerance of the part and whose ball does not hang over the part's outline
+// (res.points), and the family that traces each.
 Kept pencil_points(const Candidates& all, const MeshDistance& distance, const Cutter& cutter,
-                   const PencilParams& p, double min_angle, PencilResult& res) {
+                   const PencilParams& p, double min_angle, const HangingTest& hang,
+                   PencilResult& res) {
   PencilStats& st = res.stats;
   const std::vector<PencilCandidate>& cand = all.cand;
-  std::vector<std::uint8_t> touches(cand.size(), 0);
+  std::vector<std::uint8_t> touches(cand.size(), 0), hangs(cand.size(), 0);
   par::for_each(cand.size(), 256, [&](std::size_t i) {
     const PencilCandidate& c = cand[i];
     if (bicontact_angle(c.b1, c.b2) < min_angle) return;
@@ -200,6 +176,7 @@ Kept pencil_points(const Candidates& all, const MeshDistance& distance, const Cu
       return distance.closest(centre - cutter.radius * b, p.tolerance).distance <= p.tolerance;
     };
     touches[i] = on_part(c.b1) && on_part(c.b2);
+    hangs[i] = touches[i] && hang.hanging(c.p, c.b1, c.b2, all.refs[i]);
   });
   const bool scanned[3] = {true, true, p.step_down > 0};
   Kept kept;
@@ -209,6 +186,10 @@ Kept pencil_points(const Candidates& all, const MeshDistance& distance, const Cu
     if (angle < min_angle) continue;
     if (!touches[i]) {
       ++st.contactless_points;
+      continue;
+    }
+    if (hangs[i]) {
+      ++st.hanging_points;
       continue;
     }
     const bool keep = pencil_keep(c, scanned);
@@ -227,10 +208,11 @@ struct Chain {
   std::vector<ElementPair> refs;
 };
 
-// Chains per family; drive-plane chains reach to where their crease ends between layers.
+// Chains per family; drive-plane chains reach to where their crease ends between layers (or
+// where the ball starts to hang over the outline).
 std::vector<Chain> trace_chains(const Kept& kept, const ScanElements& se, const PencilParams& p,
-                                const std::array<double, 4>& rect, double min_angle,
-                                double floor_z, PencilStats& st) {
+                                const std::array<double, 4>& rect, const HangingTest& hang,
+                                double min_angle, double floor_z, PencilStats& st) {
   std::vector<Chain> chains;
   for (int f = 0; f < 3; ++f) {
     st.kept_points += kept.pts[f].size();
@@ -255,13 +237,17 @@ std::vector<Chain> trace_chains(const Kept& kept, const ScanElements& se, const 
     PencilCandidate e;
     const int f = ch.pts[0].family;
     const double v_min = f == 0 ? rect[1] : rect[0], v_max = f == 0 ? rect[3] : rect[2];
-    if (crease_end(se, ch.pts.back(), 1, p.interval, v_min, v_max, min_angle, floor_z, e)) {
+    const CreaseFilter keep = hang.filter();
+    ElementPair r;
+    if (crease_end(se, ch.pts.back(), 1, p.interval, v_min, v_max, keep, min_angle, floor_z, e,
+                   r)) {
       ch.pts.push_back(e);
-      ch.refs.push_back(ch.refs.back());
+      ch.refs.push_back(r);
     }
-    if (crease_end(se, ch.pts.front(), -1, p.interval, v_min, v_max, min_angle, floor_z, e)) {
+    if (crease_end(se, ch.pts.front(), -1, p.interval, v_min, v_max, keep, min_angle, floor_z, e,
+                   r)) {
       ch.pts.insert(ch.pts.begin(), e);
-      ch.refs.insert(ch.refs.begin(), ch.refs.front());
+      ch.refs.insert(ch.refs.begin(), r);
     }
   });
   return chains;
@@ -490,8 +476,8 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   std::array<double, 4> rect{};  // the scanned rectangle
   Candidates cand;
   if (sliced) {
-    rect = {box.lo.x() - p.margin, box.lo.y() - p.margin, box.hi.x() + p.margin,
-            box.hi.y() + p.margin};
+    const double m = pencil_reach(p, cutter.radius);
+    rect = {box.lo.x() - m, box.lo.y() - m, box.hi.x() + m, box.hi.y() + m};
     if (!zone.kept.facet.empty()) {  // an empty zone (a convex part) holds no bi-contact
       const ScanElements part = build_scan_elements(zone.kept.mesh, cutter.radius);
       st.elements_s += part.build_s;
@@ -511,8 +497,9 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const MeshDistance distance(mesh);
   st.index_s = index_clock0.seconds();
   Stopwatch link_clock;
-  const Kept kept = pencil_points(cand, distance, cutter, p, min_angle, res);
-  const std::vector<Chain> chains = trace_chains(kept, se, p, rect, min_angle, floor_z, st);
+  const HangingTest hang(mesh, distance, min_angle, cand.refs);
+  const Kept kept = pencil_points(cand, distance, cutter, p, min_angle, hang, res);
+  const std::vector<Chain> chains = trace_chains(kept, se, p, rect, hang, min_angle, floor_z, st);
   st.link_s = link_clock.seconds();
   if (control.cancel.load()) throw Cancelled{};
 
@@ -526,16 +513,6 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   check_pieces(pieces, part, p, st);
   order_pieces(pieces, p, res);
   return res;
-}
-
-std::string validate_stock(double stock, double radius) {
-  std::ostringstream os;
-  if (!std::isfinite(stock))
-    os << "stock must be a finite number of mm, got " << stock;
-  else if (!(stock > -radius))
-    os << "stock must be greater than minus the ball radius (-" << radius
-       << " mm): the ball's centre runs R + stock from the part, got " << stock;
-  return os.str();
 }
 
 // Stock s: the stages for the ball of radius R + s (the same centres), tips raised by s. The

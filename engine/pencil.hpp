@@ -71,7 +71,9 @@ struct PencilParams {
   double tolerance = 0.01;      // mm: chord error bound and drop-cutter check
   double merge_distance = 0;    // mm; 0: 2 * interval
   double min_length = 1.0;      // mm: shorter pieces are dropped
-  double margin = 0;            // mm around the part's xy box (scanned rectangle)
+  // mm the drive planes reach beyond the part's xy box, besides the ball's radius they always
+  // reach (every ball that touches the part)
+  double margin = 0;
   // mm: a plane below the part where the grown ball (R + stock) rests, tool tip z of that
   // ball; the tool tip stays at least floor_z + stock. Default: the part's lowest z.
   std::optional<double> floor_z;
@@ -117,6 +119,9 @@ struct PencilStats {
   // Candidates with angle >= min_angle dropped because a contact is farther than `tolerance`
   // from the part (z-level junctions under an overhang); not in pencil_points.
   std::uint64_t contactless_points = 0;
+  // Candidates dropped because the ball hangs over the part's outline, on a sharp edge of it
+  // (engine/pencil_outline.hpp); not in pencil_points.
+  std::uint64_t hanging_points = 0;
   std::uint64_t kept_points = 0;    // after the family choice
   std::uint64_t chains = 0;         // linked chains before merging
   std::uint64_t refined_points = 0;  // exact crease points added by refinement

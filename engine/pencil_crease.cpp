@@ -16,7 +16,7 @@ namespace {
 // sharp concave, off the floor, with angle >= min_angle and tangent within kCreaseMinCos of t.
 bool nearest_crease(const ScanElements& se, const PencilCandidate& a, double v, const Vec3& near,
                     double w, const Vec3& t, double min_angle, double floor_z,
-                    PencilCandidate& out) {
+                    PencilCandidate& out, ElementPair* refs = nullptr) {
   const double u = a.family == 0 ? near.x() : near.y();
   double best = w;
   bool found = false;
@@ -28,6 +28,7 @@ bool nearest_crease(const ScanElements& se, const PencilCandidate& a, double v, 
     if (d < best) {
       best = d;
       out = {j.position, j.b1, j.b2, a.family, a.layer};
+      if (refs) *refs = {j.element1, j.element2};
       found = true;
     }
   }
@@ -46,17 +47,17 @@ bool crease_between(const ScanElements& se, const PencilCandidate& a, const Penc
 }
 
 bool crease_on_plane(const ScanElements& se, const PencilCandidate& a, double v, double min_angle,
-                     double floor_z, PencilCandidate& out) {
+                     double floor_z, PencilCandidate& out, ElementPair* refs) {
   const Vec3 n = layer_normal(a.family), t = crease_tangent(a.b1, a.b2);
   if (!(std::abs(t.dot(n)) > tol::kPencilAlongPlane)) return false;  // along the planes
   const Vec3 q = a.p + t * ((v - a.p.dot(n)) / t.dot(n));
   const double w = std::max((q - a.p).norm(), 0.05);
-  return nearest_crease(se, a, v, q, w, t, min_angle, floor_z, out);
+  return nearest_crease(se, a, v, q, w, t, min_angle, floor_z, out, refs);
 }
 
 bool crease_end(const ScanElements& se, const PencilCandidate& end, double dir, double spacing,
-                double v_min, double v_max, double min_angle, double floor_z,
-                PencilCandidate& out) {
+                double v_min, double v_max, const CreaseFilter& keep, double min_angle,
+                double floor_z, PencilCandidate& out, ElementPair& out_refs) {
   const double v0 = end.p.dot(layer_normal(end.family));
   double lo = 0, hi = std::min(spacing, dir > 0 ? v_max - v0 : v0 - v_min);
   if (!(hi > 0)) return false;
@@ -65,8 +66,10 @@ bool crease_end(const ScanElements& se, const PencilCandidate& end, double dir, 
   for (int it = 0; it < 7; ++it) {
     const double mid = 0.5 * (lo + hi);
     PencilCandidate c;
-    if (crease_on_plane(se, from, v0 + dir * mid, min_angle, floor_z, c)) {
+    ElementPair r;
+    if (crease_on_plane(se, from, v0 + dir * mid, min_angle, floor_z, c, &r) && keep(c, r)) {
       out = c;
+      out_refs = r;
       from = c;
       found = true;
       lo = mid;

@@ -5,6 +5,7 @@
 // whose crease tangent runs within ~45 degrees of the expected one.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "engine/drop_index.hpp"
@@ -17,25 +18,29 @@ namespace ncpath {
 // Crease tangents of linked pencil points agree within ~45 degrees (|t1 . t2| >= this).
 inline constexpr double kCreaseMinCos = 0.7;
 
+using ElementPair = std::array<ElementRef, 2>;  // the two elements a candidate touches
+
 // Exact crease point between A and B on the drive plane halfway between their layers, near
 // the chord's middle; false when that plane has none there.
 bool crease_between(const ScanElements& se, const PencilCandidate& a, const PencilCandidate& b,
                     double min_angle, double floor_z, PencilCandidate& out);
 
-// The crease point on the drive plane at v (a's family) where a's tangent line meets it;
-// false when that plane has none near there.
+// The crease point on the drive plane at v (a's family) where a's tangent line meets it, and
+// its elements when `refs` is given; false when that plane has none near there.
 bool crease_on_plane(const ScanElements& se, const PencilCandidate& a, double v, double min_angle,
-                     double floor_z, PencilCandidate& out);
+                     double floor_z, PencilCandidate& out, ElementPair* refs = nullptr);
 
-// Where the crease ends between a chain's end and the next layer (which does not see it):
-// bisection over planes up to `spacing` beyond the end, in direction dir (+1 / -1 along the
-// layer normal), staying within [v_min, v_max] (the scanned rectangle). False when it ends at
-// the end layer already.
+// Whether a crease point (with its elements) is one to trace.
+using CreaseFilter = std::function<bool(const PencilCandidate&, const ElementPair&)>;
+
+// Where the crease ends between a chain's end and the next layer (which does not see it), or
+// stops being one `keep` accepts: bisection over planes up to `spacing` beyond the end, in
+// direction dir (+1 / -1 along the layer normal), staying within [v_min, v_max] (the scanned
+// rectangle); the point and its elements. False when it ends at the end layer already.
 bool crease_end(const ScanElements& se, const PencilCandidate& end, double dir, double spacing,
-                double v_min, double v_max, double min_angle, double floor_z,
-                PencilCandidate& out);
+                double v_min, double v_max, const CreaseFilter& keep, double min_angle,
+                double floor_z, PencilCandidate& out, ElementPair& out_refs);
 
-using ElementPair = std::array<ElementRef, 2>;  // the two elements a candidate touches
 
 // Whether the chord a-b wants a crease point between its ends (depth: refinements so far,
 // 16 at most): its error bound exceeds the tolerance (chords at least twice the tolerance

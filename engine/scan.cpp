@@ -214,6 +214,8 @@ std::vector<PlaneJunction> plane_junctions(const ScanElements& se, int f, double
     pj.b2 = w(j.b2);
     pj.kind = std::uint8_t(j.kind);
     pj.on_floor = j.element1 == kNoElement || j.element2 == kNoElement;
+    pj.element1 = element_ref(family(se, f).el, j.element1);
+    pj.element2 = element_ref(family(se, f).el, j.element2);
     out.push_back(pj);
   }
   return out;

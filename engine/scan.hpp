@@ -137,6 +137,7 @@ struct PlaneJunction {
   Vec3 position = Vec3::Zero(), b1 = Vec3::Zero(), b2 = Vec3::Zero();
   std::uint8_t kind = 0;
   bool on_floor = false;  // one side is the floor, not the part
+  ElementRef element1, element2;  // the elements b1 and b2 touch
 };
 std::vector<PlaneJunction> plane_junctions(const ScanElements& elements, int family, double v,
                                            double u0, double u1, double floor_z);

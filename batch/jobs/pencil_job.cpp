@@ -61,6 +61,7 @@ void push_pencil_stats(const PencilStats& st, std::vector<out::StatValue>& stats
       {"candidates", i64(st.candidates), ""},
       {"pencil_points", i64(st.pencil_points), ""},
       {"contactless_points", i64(st.contactless_points), ""},
+      {"hanging_points", i64(st.hanging_points), ""},
       {"kept_points", i64(st.kept_points), ""},
       {"chains", i64(st.chains), ""},
       {"refined_points", i64(st.refined_points), ""},

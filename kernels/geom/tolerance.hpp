@@ -430,6 +430,12 @@ inline constexpr double kPencilAlongPlane = 1e-6;
 // is 0 (engine/pencil.cpp).
 inline constexpr double kPencilMinPiece = 1e-9;
 
+// mm. A ball centre whose vertical passes this close to the part lies over it
+// (engine/pencil_outline.hpp): a crease ending at a vertical side of the part, with a drive
+// plane in that side's plane, keeps its point there. Rounding of the distance to a face the
+// vertical lies in is far smaller.
+inline constexpr double kPencilOutline = 1e-9;
+
 // Dimensionless (cosine). The concave zone's normal cone of a patch (engine/concave_zone.hpp)
 // whose normals reach within this of 90 degrees from its axis is unbounded: near a
 // hemisphere the cone's axis says nothing.

@@ -142,7 +142,9 @@ TEST(FilletCli, PassesTouchTheFilletedGrooveFromContactToContact) {
   EXPECT_EQ(st["unreachable"], 0);
   EXPECT_EQ(st["reference_paths"], 1);
   EXPECT_EQ(st["reference_levels"], 0);
-  EXPECT_EQ(st["reference_planes"], 33 + 41);  // x lines y = -8 ... 8, y lines x = -10 ... 10
+  // The planes reach one interval more than the reference ball's radius (5 mm) beyond the
+  // part's box: x lines y = -13.5 ... 13.5, y lines x = -15.5 ... 15.5.
+  EXPECT_EQ(st["reference_planes"], 55 + 63);
   EXPECT_EQ(st["reference_pencil_points"], 33);
   EXPECT_NEAR(st["reference_traced_length"], 16, 1e-6);
   for (const char* s : {"cut_length", "reference_traced_length", "reference_air_length"})

@@ -92,11 +92,16 @@ TEST(PencilCli, AVGrooveGivesOnePathAlongItsFloor) {
     expect_dataset(f, std::string("/jobs/pencil/pencil/") + name, shape, unit);
   }
 
-  // Statistics: x lines y = 0 ... 20 and y lines x = -10 ... 10, every 0.5.
+  // Statistics: the drive planes reach one interval more than the ball's radius (2 mm) beyond
+  // the part's box: x lines y = -2.5 ... 22.5 and y lines x = -12.5 ... 12.5, every 0.5.
   const scan_cli::Stats st{f, "pencil"};
-  EXPECT_EQ(st["planes"], 82);
+  EXPECT_EQ(st["planes"], 102);
   EXPECT_EQ(st["levels"], 0);
-  EXPECT_EQ(st["candidates"], 41);
+  // 41 on the groove and 4 past its open ends, where the ball hangs on the two end edges
+  // (centre (0, 20 + d, zc) at distance R from the lines z = |x|: zc = sqrt(2 (R^2 - d^2)), tip
+  // zc - R above the floor z = 0 for d = 0.5 and 1, below it for d = 1.5 and 2).
+  EXPECT_EQ(st["candidates"], 45);
+  EXPECT_EQ(st["hanging_points"], 4);
   EXPECT_EQ(st["pencil_points"], 41);
   EXPECT_EQ(st["kept_points"], 41);
   EXPECT_EQ(st["paths"], 1);
@@ -173,7 +178,7 @@ params = { interval = 0.5, step_down = 0, min_angle = 100 }
   EXPECT_TRUE(p.angle.empty());
   expect_dataset(f, "/jobs/steep/pencil/point_position", {0, 3}, "mm");
   const scan_cli::Stats st{f, "steep"};
-  EXPECT_EQ(st["candidates"], 41);  // the same junctions, all below the threshold
+  EXPECT_EQ(st["candidates"], 45);  // the same junctions, all below the threshold
   EXPECT_EQ(st["pencil_points"], 0);
   EXPECT_EQ(st["paths"], 0);
   EXPECT_EQ(st["points"], 0);

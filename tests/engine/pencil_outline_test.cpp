@@ -1,0 +1,64 @@
+// Pencil points and the part's outline (engine/pencil_outline.hpp).
+//
+// A plate [0, 30] x [0, 20] x [0, 3] with a block [24, 29.5] x [5, 15] x [3, 8] on it: the
+// block's outer wall stands 0.5 mm inside the plate's edge x = 30. A ball of radius 2 against
+// that wall (centre x = 31.5) and on the plate's top edge below it holds a bi-contact, with
+// its centre beyond the plate's outline: it hangs, and is not a crease. The creases of this
+// part are at the block's foot on the plate's top, every ball centre over the plate. Before
+// the drive planes reached past the part's box and hanging balls were dropped, the turned
+// part's pencil held the hanging path (its box reaches past x = 30 there) and the upright
+// part's did not. (The traced lengths still differ between the poses, by the stretches
+// around the block's corners that both drive-plane families trace.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "engine/pencil.hpp"
+#include "tests/engine/mesh_test_support.hpp"
+#include "tests/support/random_parts.hpp"
+
+namespace ncpath {
+namespace {
+
+TriangleMesh plate_with_block() {
+  using namespace test::random_parts_detail;
+  TriangleMesh part = prism(rectangle(0, 0, 30, 20), 2, 0, 3);
+  append(part, prism(rectangle(24, 5, 29.5, 15), 2, 3, 8));
+  return part;
+}
+
+Vec3 turned(const Vec3& v, double deg) {
+  const double a = deg * std::numbers::pi / 180, c = std::cos(a), s = std::sin(a);
+  return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
+}
+
+TEST(PencilOutline, ABallHangingOverTheOutlineIsNoCreaseInAnyPose) {
+  const double R = 2;
+  PencilParams p;
+  p.interval = 0.5;
+  p.step_down = 1;
+  for (double deg : {0.0, 37.3, 90.0}) {
+    SCOPED_TRACE("turned " + std::to_string(deg) + " degrees");
+    TriangleMesh mesh = plate_with_block();
+    for (Vec3& v : mesh.vertices) v = turned(v, deg);
+    RunControl control;
+    const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+    ASSERT_FALSE(r.paths.empty());
+    // Every ball centre over the plate (back in the upright frame).
+    for (const auto& path : r.paths)
+      for (const Vec3& q : path) {
+        const Vec3 c = turned(q, -deg);
+        EXPECT_GE(c.x(), -1e-6);
+        EXPECT_LE(c.x(), 30 + 1e-6) << q.transpose();
+        EXPECT_GE(c.y(), -1e-6);
+        EXPECT_LE(c.y(), 20 + 1e-6);
+      }
+    EXPECT_GT(r.stats.hanging_points, 0u);
+    test_meshes::expect_no_gouge(mesh, r.paths, R);
+  }
+}
+
+}  // namespace
+}  // namespace ncpath
