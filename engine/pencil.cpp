@@ -356,6 +356,30 @@ Pieces refine_joined(const Joined& joined, const ScanElements& se,
   return {std::move(pieces), std::move(normals)};
 }
 
+// A crease traced twice (by both drive-plane families past a turn of 45 degrees) kept once,
+// and its pieces joined: pieces split where they turn back, points within twice the
+// tolerance of a longer piece, along it, dropped (uncovered_runs), and pieces whose ends meet
+// within the merge distance joined (a piece whose ends meet closed), each point keeping its
+// contact vectors.
+void drop_retraced(Pieces& pc, const PencilParams& p) {
+  auto key = [](const Vec3& q) { return std::array<double, 3>{q.x(), q.y(), q.z()}; };
+  std::map<std::array<double, 3>, std::array<Vec3, 2>> normal_at;
+  for (std::size_t k = 0; k < pc.paths.size(); ++k)
+    for (std::size_t i = 0; i < pc.paths[k].size(); ++i)
+      normal_at.emplace(key(pc.paths[k][i]), pc.normals[k][i]);
+  std::vector<std::vector<Vec3>> split, runs;
+  for (const PathRun& r : cusp_runs(pc.paths))
+    split.emplace_back(pc.paths[r.path].begin() + r.from, pc.paths[r.path].begin() + r.to + 1);
+  for (const PathRun& r : uncovered_runs(split, 2 * p.tolerance, kCreaseMinCos))
+    runs.emplace_back(split[r.path].begin() + r.from, split[r.path].begin() + r.to + 1);
+  const double merge = p.merge_distance > 0 ? p.merge_distance : 2 * p.interval;
+  pc.paths = merge_paths(std::move(runs), merge, 0.5, 0);
+  close_loops(pc.paths, merge, 0.5);
+  pc.normals.assign(pc.paths.size(), {});
+  for (std::size_t k = 0; k < pc.paths.size(); ++k)
+    for (const Vec3& q : pc.paths[k]) pc.normals[k].push_back(normal_at.at(key(q)));
+}
+
 // Never below the CL surface: the ball swept along every chord (exact), a chord that touches
 // lifted away from both contacts (a chord of a crease curving around a vertical edge at a
 // floor cuts into the edge sideways, which no vertical lift clears). A chord that would need
@@ -510,6 +534,7 @@ static PencilResult run_pencil_exact(const TriangleMesh& mesh, const Cutter& cut
   const PartProbe part{index, distance, cutter.radius, floor_z, box.hi.z()};
   const ZLevelCreaseRefine refine_z{mesh, index, part, p.tolerance, cutter.radius, floor_z};
   Pieces pieces = refine_joined(join_chains(chains, p), se, refine_z, p, min_angle, st);
+  drop_retraced(pieces, p);
   check_pieces(pieces, part, p, st);
   order_pieces(pieces, p, res);
   return res;

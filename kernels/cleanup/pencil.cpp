@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -9,6 +10,7 @@
 #include <unordered_map>
 
 #include "kernels/geom/tolerance.hpp"
+#include "kernels/mesh/closest_point.hpp"
 
 namespace ncpath {
 
@@ -159,6 +161,131 @@ Vec3 outward(const std::vector<Vec3>& p, int e) {
 }
 
 }  // namespace
+
+void close_loops(std::vector<std::vector<Vec3>>& paths, double merge_distance, double min_cos) {
+  for (std::vector<Vec3>& p : paths) {
+    if (p.size() < 3 || p.front() == p.back()) continue;
+    if ((p.front() - p.back()).norm() > merge_distance) continue;
+    const Vec3 oa = outward(p, 0), ob = outward(p, 1);
+    if (!oa.isZero() && !ob.isZero() && -oa.dot(ob) >= min_cos) p.push_back(p.front());
+  }
+}
+
+namespace {
+
+// Segments of the paths taken so far, found by a grid of cell `cell` (> 2 eps): a segment is
+// listed in the cells of samples at most half a cell apart, so a point within eps of it
+// finds it in the 27 cells around its own.
+class SegmentGrid {
+ public:
+  explicit SegmentGrid(double cell) : cell_(cell) {}
+  void add(const Vec3& a, const Vec3& b) {
+    const auto id = std::uint32_t(seg_.size());
+    seg_.push_back({a, b});
+    const int n = 1 + int(std::ceil(2 * (b - a).norm() / cell_));
+    std::array<std::int64_t, 3> last{};
+    for (int i = 0; i <= n; ++i) {
+      const auto k = key(a + (double(i) / n) * (b - a));
+      if (i > 0 && k == last) continue;
+      grid_[k].push_back(id);
+      last = k;
+    }
+  }
+  // Whether a segment within eps of p runs along the unit vector t (|cos| >= min_cos).
+  bool covers(const Vec3& p, const Vec3& t, double eps, double min_cos) const {
+    const auto k = key(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = grid_.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == grid_.end()) continue;
+          for (std::uint32_t id : it->second)
+            if (near_along(seg_[id], p, t, eps, min_cos)) return true;
+        }
+    return false;
+  }
+
+ private:
+  static bool near_along(const std::array<Vec3, 2>& s, const Vec3& p, const Vec3& t, double eps,
+                         double min_cos) {
+    const Vec3 d = s[1] - s[0];
+    const double len = d.norm();
+    if (!(len > 0) || std::abs(d.dot(t)) < min_cos * len) return false;
+    Vec3 c;
+    point_segment_closest(p, s[0], s[1], c);
+    return (p - c).norm() <= eps;
+  }
+  std::array<std::int64_t, 3> key(const Vec3& p) const {
+    return {std::int64_t(std::floor(p.x() / cell_)), std::int64_t(std::floor(p.y() / cell_)),
+            std::int64_t(std::floor(p.z() / cell_))};
+  }
+  double cell_;
+  std::vector<std::array<Vec3, 2>> seg_;
+  std::map<std::array<std::int64_t, 3>, std::vector<std::uint32_t>> grid_;
+};
+
+// Unit tangent of a polyline at point i (central difference; one-sided at the ends).
+Vec3 tangent_at(const std::vector<Vec3>& p, std::size_t i) {
+  const Vec3 d = p[std::min(i + 1, p.size() - 1)] - p[i > 0 ? i - 1 : 0];
+  const double n = d.norm();
+  return n > 0 ? Vec3(d / n) : Vec3::Zero();
+}
+
+double polyline_length(const std::vector<Vec3>& p) {
+  double s = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) s += (p[i] - p[i - 1]).norm();
+  return s;
+}
+
+}  // namespace
+
+std::vector<PathRun> cusp_runs(std::span<const std::vector<Vec3>> paths) {
+  std::vector<PathRun> runs;
+  for (std::uint32_t k = 0; k < paths.size(); ++k) {
+    const std::vector<Vec3>& p = paths[k];
+    if (p.empty()) continue;
+    std::uint32_t from = 0;
+    for (std::uint32_t i = 1; i + 1 < p.size(); ++i) {
+      const Vec3 a = p[i] - p[i - 1], b = p[i + 1] - p[i];
+      if (!(a.dot(b) < -0.5 * a.norm() * b.norm())) continue;
+      runs.push_back({k, from, i});
+      from = i;
+    }
+    runs.push_back({k, from, std::uint32_t(p.size() - 1)});
+  }
+  return runs;
+}
+
+std::vector<PathRun> uncovered_runs(std::span<const std::vector<Vec3>> paths, double eps,
+                                    double min_cos) {
+  std::vector<double> length(paths.size());
+  for (std::size_t k = 0; k < paths.size(); ++k) length[k] = polyline_length(paths[k]);
+  std::vector<std::uint32_t> order(paths.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return length[a] > length[b]; });
+  SegmentGrid taken(std::max(4 * eps, 0.5));
+  std::vector<PathRun> runs;
+  for (std::uint32_t k : order) {
+    const std::vector<Vec3>& p = paths[k];
+    std::vector<std::uint8_t> covered(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec3 t = tangent_at(p, i);
+      covered[i] = !t.isZero() && taken.covers(p[i], t, eps, min_cos);
+    }
+    const std::size_t first = runs.size();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (covered[i]) continue;
+      std::size_t j = i;
+      while (j + 1 < p.size() && !covered[j + 1]) ++j;
+      if (j > i) runs.push_back({k, std::uint32_t(i), std::uint32_t(j)});
+      i = j;
+    }
+    for (std::size_t r = first; r < runs.size(); ++r)
+      for (std::uint32_t i = runs[r].from; i < runs[r].to; ++i) taken.add(p[i], p[i + 1]);
+  }
+  return runs;
+}
 
 std::vector<std::vector<Vec3>> merge_paths(std::vector<std::vector<Vec3>> paths,
                                            double merge_distance, double min_cos,

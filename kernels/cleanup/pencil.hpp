@@ -91,6 +91,31 @@ std::vector<std::vector<Vec3>> merge_paths(std::vector<std::vector<Vec3>> paths,
                                            double merge_distance, double min_cos,
                                            double min_length);
 
+// Closes the polylines whose ends are within `merge_distance` (mm) of each other and whose end
+// directions agree (cos >= min_cos, as merge_paths) by repeating the first point at the end:
+// a crease that goes around (a boss's foot) is one closed path, not a path with a gap.
+void close_loops(std::vector<std::vector<Vec3>>& paths, double merge_distance, double min_cos);
+
+// A run of points [from, to] of path `path` (indices into the paths given).
+struct PathRun {
+  std::uint32_t path = 0, from = 0, to = 0;
+};
+
+// The paths cut where they turn back on themselves (consecutive chords more than 120 degrees
+// apart: a chain joined to another that starts back along the same crease): runs sharing
+// the turning point, covering every path.
+std::vector<PathRun> cusp_runs(std::span<const std::vector<Vec3>> paths);
+
+// Paths traced more than once kept once (a crease turning through 45 degrees at a corner is
+// followed by both drive-plane families past the turn): the paths are taken longest first,
+// and a point lying within `eps` (mm) of a path taken before, on a segment whose direction
+// agrees with the point's tangent (|cos| >= min_cos), is covered. Returns the runs of
+// uncovered points in the order taken (single points dropped); a run's ends then lie about a
+// point spacing from the path that covers its neighbours, to be joined end to end.
+// Deterministic.
+std::vector<PathRun> uncovered_runs(std::span<const std::vector<Vec3>> paths, double eps,
+                                    double min_cos);
+
 // The crease point at ball-centre height zc of two elements given by their closest-point
 // functions: the (x, y) where the ball centre (x, y, zc) is at distance R from both, by
 // Newton from `guess` (the gradient of a distance is the unit vector from the closest point

@@ -1,4 +1,5 @@
-// Pencil points and the part's outline (engine/pencil_outline.hpp).
+// Pencil points and the part's outline (engine/pencil_outline.hpp), and a crease traced once
+// however the part is turned.
 //
 // A plate [0, 30] x [0, 20] x [0, 3] with a block [24, 29.5] x [5, 15] x [3, 8] on it: the
 // block's outer wall stands 0.5 mm inside the plate's edge x = 30. A ball of radius 2 against
@@ -7,8 +8,15 @@
 // part are at the block's foot on the plate's top, every ball centre over the plate. Before
 // the drive planes reached past the part's box and hanging balls were dropped, the turned
 // part's pencil held the hanging path (its box reaches past x = 30 there) and the upright
-// part's did not. (The traced lengths still differ between the poses, by the stretches
-// around the block's corners that both drive-plane families trace.)
+// part's did not.
+//
+// The crease at the block's foot, the ball (radius 2) on the plate's top against the block:
+// from where its centre leaves the plate (x = 30) around the corner (29.5, 5), along y = 3,
+// around (24, 5), along x = 22, around (24, 15), along y = 17 and around (29.5, 15) back to
+// x = 30: 2 x 5.5 + 10 + 2 (pi R / 2) + 2 R asin(0.5 / R) = 28.294 mm, one path, tip z = 3.
+// Both drive-plane families follow the corner arcs past their 45-degree points; before each
+// point within twice the tolerance of a longer piece was dropped, those stretches were traced
+// twice (29.25 mm upright, 31.82 mm turned 37.3 degrees).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -57,6 +65,30 @@ TEST(PencilOutline, ABallHangingOverTheOutlineIsNoCreaseInAnyPose) {
       }
     EXPECT_GT(r.stats.hanging_points, 0u);
     test_meshes::expect_no_gouge(mesh, r.paths, R);
+  }
+}
+
+TEST(PencilOutline, TheBlocksFootIsTracedOnceInAnyPose) {
+  const double R = 2;
+  const double expected = 2 * 5.5 + 10 + std::numbers::pi * R + 2 * R * std::asin(0.5 / R);
+  PencilParams p;
+  p.interval = 0.5;
+  p.step_down = 1;
+  for (double deg : {0.0, 37.3, 90.0}) {
+    SCOPED_TRACE("turned " + std::to_string(deg) + " degrees");
+    TriangleMesh mesh = plate_with_block();
+    for (Vec3& v : mesh.vertices) v = turned(v, deg);
+    RunControl control;
+    const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+    ASSERT_EQ(r.paths.size(), 1u);
+    // Chords inscribed in the corner arcs (sagitta <= tolerance) and ends placed by bisection
+    // to 1/128 of the interval: within 0.05 mm.
+    EXPECT_NEAR(r.stats.traced_length, expected, 0.05);
+    // On the plate's top, or lifted where a chord of a corner arc passes the block's edge.
+    for (const Vec3& q : r.paths[0]) {
+      EXPECT_GE(q.z(), 3 - 1e-9);
+      EXPECT_LE(q.z(), 3 + p.tolerance);
+    }
   }
 }
 

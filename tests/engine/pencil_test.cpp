@@ -169,11 +169,15 @@ TEST(Pencil, BossFootIncludingTheArcsAroundItsVerticalEdges) {
     worst = std::max(worst, path_distance(q));
   }
   EXPECT_LE(worst, p.tolerance);
-  // Each family traces an arc where its planes cross it more steeply than 45 degrees, a
-  // chain reaching at most one plane beyond: neighbouring sides' pieces overlap on each arc
-  // by at most 2 interval / sin 45 degrees (1.18 mm each here: traced twice, not joined).
-  EXPECT_GE(r.stats.traced_length, loop - p.tolerance);
-  EXPECT_LE(r.stats.traced_length, loop + 4 * 2 * p.interval / std::sin(std::numbers::pi / 4));
+  // Traced once, as one closed path: each family follows the arcs past their 45-degree points
+  // (before the pieces were kept once, neighbouring sides' pieces overlapped on each arc by up
+  // to 2 interval / sin 45 degrees, and the loop came as 4 paths). Its chords are inscribed in
+  // the arcs with sagitta h <= tolerance, each shorter than its arc by at most h / (3 R) of it.
+  ASSERT_EQ(r.paths.size(), 1u);
+  // (Closed up to the chord check's lifts of the two ends, each by its own chord.)
+  EXPECT_LE((r.paths[0].front() - r.paths[0].back()).norm(), p.tolerance);
+  EXPECT_GE(r.stats.traced_length, loop - 2 * std::numbers::pi * p.tolerance / 3);
+  EXPECT_LE(r.stats.traced_length, loop + p.tolerance);
   test_meshes::expect_no_gouge(mesh, r.paths, R);
 }
 
