@@ -315,22 +315,15 @@ void set_clearances(double cap, const Grid& grid, const CellLists& region_cells,
     }
 }
 
-}  // namespace
-
-ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
-                             double tip_z, const ZLevelParams& params) {
-  ZLevelResult result;
-  result.tip_z = tip_z;
-  ZLevelStats& st = result.stats;
-  const Level lv{tip_z + el.radius, el.radius};
+// The candidates that reach the level, in id order (ws.cand) with their boxes, floats rounded
+// outwards (ws.cand_box), and the mesh points at the ends of candidate edges and vertices
+// (ws.pbits: their discs mark interior cells); ext becomes their boxes' union. The given ids
+// become a bitmap first: sorted, without repeats, independent of their order.
+void gather_candidates(const OffsetElements& el, std::span<const std::uint32_t> candidates,
+                       const Level& lv, const ZLevelParams& params, Workspace& ws,
+                       ZLevelStats& st, double ext[4]) {
   const auto n_el = std::uint32_t(el.element_count());
   const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
-  if (!(lv.R > 0)) return result;
-
-  // Candidate set as a bitmap: sorted, without repeats, independent of the given order.
-  std::optional<ZLevelWorkspace> own;
-  if (!params.workspace) own.emplace();
-  Workspace& ws = params.workspace ? params.workspace->buffers() : own->buffers();
   std::vector<std::uint64_t>& bits = ws.bits;
   bits.assign((n_el + 63) / 64, 0);
   for (std::uint32_t id : candidates)
@@ -341,8 +334,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
         fn(std::uint32_t(w * 64 + std::countr_zero(m)));
   };
 
-  // Non-empty candidates with their boxes (floats rounded outwards), the grid's extent and
-  // the mesh points at the ends of candidate edges (their discs mark interior cells).
   std::vector<std::uint32_t>& cand = ws.cand;
   std::vector<Box4f>& cand_box = ws.cand_box;
   cand.clear();
@@ -352,7 +343,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   std::vector<std::uint64_t>& pbits = ws.pbits;
   pbits.assign((el.points.size() + 63) / 64, 0);
   auto mark_point = [&](std::uint32_t p) { pbits[p >> 6] |= std::uint64_t(1) << (p & 63); };
-  double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
   const ZLevelElementBoxes* pre = params.boxes;
   for_each_id([&](std::uint32_t id) {
     ++st.candidates;
@@ -378,8 +368,13 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
       mark_point(el.edge_vertices[id - nf][1]);
     }
   });
-  if (!(ext[0] <= ext[2])) return result;
-  const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
+}
+
+// The grid over ext (cells of params.cell, else R / 2; at most 4e6 of them), its interior
+// cells marked (mark_interior_cells) and the prefix sums of its open cells.
+Grid level_grid(const OffsetElements& el, const Workspace& ws, const Level& lv,
+                const ZLevelInside* inside, const ZLevelParams& params, const double ext[4],
+                ZLevelStats& st) {
   Grid grid;
   grid.cell = params.cell > 0 ? params.cell : 0.5 * lv.R;
   const double wx = ext[2] - ext[0], wy = ext[3] - ext[1];
@@ -395,10 +390,29 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   st.cells = grid.interior.size();
 
   mark_interior_cells(el, ws, lv, inside, grid, st);
-  // A region deep inside it (tol::kZLevelInsideDepth) is dropped; its shape is tested through
-  // a hull that holds it: the projected offset triangle, the capsule of radius R around the
-  // edge's shadow, the disc.
-  // Marks a region wholly above the inside region's level (Region::known_inside).
+  grid.sum.assign(std::size_t(grid.nx + 1) * (grid.ny + 1), 0);
+  for (int j = 0; j < grid.ny; ++j)
+    for (int i = 0; i < grid.nx; ++i) {
+      const std::size_t w = grid.nx + 1;
+      const std::uint32_t open = grid.interior[std::size_t(j) * grid.nx + i] ? 0 : 1;
+      grid.sum[(j + 1) * w + i + 1] =
+          grid.sum[j * w + i + 1] + grid.sum[(j + 1) * w + i] - grid.sum[j * w + i] + open;
+      st.interior_cells += 1 - open;
+    }
+
+  return grid;
+}
+
+// Regions that reach an open cell, in element id order (facets, edges, vertices; vertices
+// come from those edges and from vertex candidates), each marked when wholly above the
+// inside region's level (Region::known_inside); a region deep inside it
+// (tol::kZLevelInsideDepth) is dropped, its shape tested through a hull that holds it: the
+// projected offset triangle, the capsule of radius R around the edge's shadow, the disc.
+void collect_regions(const OffsetElements& el, Workspace& ws, const Level& lv,
+                     const ZLevelInside* inside, const Grid& grid, ZLevelStats& st) {
+  const auto nf = std::uint32_t(el.facet_count()), ne = std::uint32_t(el.edge_count());
+  const std::vector<std::uint32_t>& cand = ws.cand;
+  const std::vector<Box4f>& cand_box = ws.cand_box;
   const double zc_inside = inside ? inside->tip_z + lv.R : INFINITY;
   auto mark_known = [&](Region& g) {
     double low = INFINITY;
@@ -417,18 +431,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     st.inside_regions += deep;
     return deep;
   };
-  grid.sum.assign(std::size_t(grid.nx + 1) * (grid.ny + 1), 0);
-  for (int j = 0; j < grid.ny; ++j)
-    for (int i = 0; i < grid.nx; ++i) {
-      const std::size_t w = grid.nx + 1;
-      const std::uint32_t open = grid.interior[std::size_t(j) * grid.nx + i] ? 0 : 1;
-      grid.sum[(j + 1) * w + i + 1] =
-          grid.sum[j * w + i + 1] + grid.sum[(j + 1) * w + i] - grid.sum[j * w + i] + open;
-      st.interior_cells += 1 - open;
-    }
-
-  // Regions that reach an open cell, in element id order (facets, edges, vertices); vertices
-  // come from those edges (and from vertex candidates).
   std::vector<Region>& regions = ws.regions;
   regions.clear();
   std::vector<std::uint64_t>& vbits = ws.vbits;
@@ -470,7 +472,13 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
     }
   st.regions = regions.size();
 
-  // Candidate curves that reach an open cell.
+}
+
+// The regions' curves that reach an open cell (ws.curves, each region's a range of them),
+// and their tangent joints (ws.joints).
+void collect_curves(const OffsetElements& el, Workspace& ws, const Level& lv, const Grid& grid,
+                    ZLevelStats& st) {
+  std::vector<Region>& regions = ws.regions;
   std::vector<Curve>& curves = ws.curves;
   std::vector<Joint>& joints = ws.joints;
   curves.clear();
@@ -488,6 +496,46 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   }
   st.curves = curves.size();
 
+}
+
+// Active curve pairs i < j whose boxes overlap, once each, other than a region's own curves
+// and the structural pairs.
+template <class Fn>
+void for_each_pair(const OffsetElements& el, Workspace& ws, const Grid& grid, Fn&& fn) {
+  const std::vector<Curve>& act = ws.act;
+  const std::vector<Region>& regions = ws.regions;
+  const CellLists& curve_cells = ws.curve_cells;
+  std::vector<std::uint32_t>& stamp = ws.stamp;
+  stamp.assign(act.size(), kNone);
+  for (std::uint32_t i = 0; i < act.size(); ++i) {
+    const Curve& C = act[i];
+    int i0, j0, i1, j1;
+    grid.range(C.box, i0, j0, i1, j1);
+    for (int cj = j0; cj <= j1; ++cj)
+      for (int ci = i0; ci <= i1; ++ci) {
+        const std::size_t cell = std::size_t(cj) * grid.nx + ci;
+        for (std::uint32_t k = curve_cells.start[cell]; k < curve_cells.start[cell + 1]; ++k) {
+          const std::uint32_t j = curve_cells.ids[k];
+          if (j <= i || stamp[j] == i) continue;
+          stamp[j] = i;
+          const Curve& D = act[j];
+          if (C.region == D.region || !boxes_overlap(C.box, D.box)) continue;
+          if (structural_pair(el, regions[C.region], regions[D.region])) continue;
+          fn(i, j);
+        }
+      }
+  }
+}
+
+// The parts of the curves not certified inside U (piecewise by single regions or interior
+// cells): the active curves (ws.act), in region order, with coincident curves trimmed to the
+// lowest element id's; the lists of regions and active curves per cell. Returns each
+// region's first active curve (and the end).
+std::vector<std::uint32_t> active_curves(const OffsetElements& el, Workspace& ws,
+                                         const Level& lv, const ZLevelInside* inside,
+                                         const Grid& grid, ZLevelStats& st) {
+  std::vector<Region>& regions = ws.regions;
+  const std::vector<Curve>& curves = ws.curves;
   CellLists &region_cells = ws.region_cells, &curve_cells = ws.curve_cells;
   fill_lists(
       grid, regions.size(), [&](std::size_t k) { return regions[k].box; }, region_cells);
@@ -496,8 +544,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   rbox.resize(regions.size());
   for (std::size_t k = 0; k < regions.size(); ++k) rbox[k] = outward_box(regions[k].box);
 
-  // The parts of the curves not certified inside U (piecewise by single regions or interior
-  // cells): the active curves, in region order; act_begin[g] is region g's first.
   std::vector<Curve>& act = ws.act;
   act.clear();
   std::vector<std::uint32_t> act_begin(regions.size() + 1, 0);
@@ -516,31 +562,6 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   fill_lists(
       grid, act.size(), [&](std::size_t k) { return act[k].box; }, curve_cells);
 
-  // Active curve pairs i < j whose boxes overlap, once each, other than a region's own
-  // curves and the structural pairs.
-  std::vector<std::uint32_t>& stamp = ws.stamp;
-  auto for_each_pair = [&](auto&& fn) {
-    stamp.assign(act.size(), kNone);
-    for (std::uint32_t i = 0; i < act.size(); ++i) {
-      const Curve& C = act[i];
-      int i0, j0, i1, j1;
-      grid.range(C.box, i0, j0, i1, j1);
-      for (int cj = j0; cj <= j1; ++cj)
-        for (int ci = i0; ci <= i1; ++ci) {
-          const std::size_t cell = std::size_t(cj) * grid.nx + ci;
-          for (std::uint32_t k = curve_cells.start[cell]; k < curve_cells.start[cell + 1]; ++k) {
-            const std::uint32_t j = curve_cells.ids[k];
-            if (j <= i || stamp[j] == i) continue;
-            stamp[j] = i;
-            const Curve& D = act[j];
-            if (C.region == D.region || !boxes_overlap(C.box, D.box)) continue;
-            if (structural_pair(el, regions[C.region], regions[D.region])) continue;
-            fn(i, j);
-          }
-        }
-    }
-  };
-
   // Coincident curves (the shadows of a wall's stacked edges and vertices lie on the same
   // lines and circles): where a curve runs along one of a lower element id, the
   // classification below drops it (the lower id keeps a shared piece; regions on both sides
@@ -548,7 +569,7 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   // the lowest stays and still splits the curves that cross there.
   {
     std::vector<Cut> cuts;
-    for_each_pair([&](std::uint32_t i, std::uint32_t j) {
+    for_each_pair(el, ws, grid, [&](std::uint32_t i, std::uint32_t j) {
       double d0, d1;  // act is in element order: act[i]'s is the lower id
       if (coincident_overlap(act[i], act[j], d0, d1)) cuts.push_back({j, d0, d1});
     });
@@ -560,7 +581,16 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   }
   st.active_curves = act.size();
 
-  // Splits: every curve's ends, the tangent joints, the crossings.
+  return act_begin;
+}
+
+// Splits of the active curves: every curve's ends, the tangent joints, the crossings; sorted.
+void level_splits(Workspace& ws, const std::vector<std::uint32_t>& act_begin,
+                  const OffsetElements& el, const Level& lv, const Grid& grid, ZLevelStats& st) {
+  const std::vector<Curve>& act = ws.act;
+  const std::vector<Curve>& curves = ws.curves;
+  const std::vector<Joint>& joints = ws.joints;
+  const std::vector<Region>& regions = ws.regions;
   std::vector<Split>& splits = ws.splits;
   splits.clear();
   splits.reserve(curves.size() * 4);
@@ -571,21 +601,47 @@ ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint
   joint_splits(joints, regions, act, act_begin, splits);
   {
     std::vector<Hit> hits;
-    for_each_pair([&](std::uint32_t i, std::uint32_t j) {
+    for_each_pair(el, ws, grid, [&](std::uint32_t i, std::uint32_t j) {
       ++st.pairs;
       st.crossings += crossing_splits(act, i, j, lv, hits, splits);
     });
   }
   sort_splits(splits);
 
+}
+
+}  // namespace
+
+ZLevelResult zlevel_contours(const OffsetElements& el, std::span<const std::uint32_t> candidates,
+                             double tip_z, const ZLevelParams& params) {
+  ZLevelResult result;
+  result.tip_z = tip_z;
+  ZLevelStats& st = result.stats;
+  const Level lv{tip_z + el.radius, el.radius};
+  if (!(lv.R > 0)) return result;
+  std::optional<ZLevelWorkspace> own;
+  if (!params.workspace) own.emplace();
+  Workspace& ws = params.workspace ? params.workspace->buffers() : own->buffers();
+  double ext[4] = {INFINITY, INFINITY, -INFINITY, -INFINITY};
+  gather_candidates(el, candidates, lv, params, ws, st, ext);
+  if (!(ext[0] <= ext[2])) return result;
+  const ZLevelInside* inside = params.inside && !params.inside->empty() ? params.inside : nullptr;
+  const Grid grid = level_grid(el, ws, lv, inside, params, ext, st);
+  collect_regions(el, ws, lv, inside, grid, st);
+  collect_curves(el, ws, lv, grid, st);
+  const std::vector<std::uint32_t> act_begin = active_curves(el, ws, lv, inside, grid, st);
+  level_splits(ws, act_begin, el, lv, grid, st);
+
   // The pieces between consecutive splits; the contours are the boundaries of the faces of
   // their planar map that lie outside U.
-  const std::vector<Piece> pieces = split_pieces(splits, st);
+  const std::vector<Piece> pieces = split_pieces(ws.splits, st);
   std::vector<std::uint8_t> keep;
-  classify_pieces(splits, act, curves, regions, rbox, grid, region_cells, lv, keep);
-  build_loops(el, lv, regions, act, pieces, keep, result);
+  classify_pieces(ws.splits, ws.act, ws.curves, ws.regions, ws.rbox, grid, ws.region_cells, lv,
+                  keep);
+  build_loops(el, lv, ws.regions, ws.act, pieces, keep, result);
   if (params.clearance_cap > 0)
-    set_clearances(params.clearance_cap, grid, region_cells, regions, rbox, lv, result);
+    set_clearances(params.clearance_cap, grid, ws.region_cells, ws.regions, ws.rbox, lv,
+                   result);
   return result;
 }
 
