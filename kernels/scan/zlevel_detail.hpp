@@ -3,8 +3,9 @@
 // only: the region of one offset element at one level, its candidate boundary curves, the
 // membership test and curve-curve intersection, the pruning grid, the cover and piece
 // classification, and loop building. The files:
-//   zlevel.cpp            top-level flow (zlevel_contours): pruning grid, regions, active
-//                         curves, crossings, splits
+//   zlevel.cpp            top-level flow (zlevel_contours): regions, active curves,
+//                         crossings, splits
+//   zlevel_grid.cpp       the pruning grid: candidates that reach the level, interior cells
 //   zlevel_regions.cpp    regions of offset elements and their candidate curves
 //   zlevel_intersect.cpp  curve evaluation and curve-curve crossings
 //   zlevel_cover.cpp      uncovered runs, tangent joints, piece classification
@@ -15,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -356,5 +358,44 @@ void build_loops(const OffsetElements& el, const Level& lv, const std::vector<Re
 double contour_area(const std::vector<ContourSeg>& segs);
 // In output order: by the first segment's start (x, then y), then its element.
 void sort_contours(std::vector<ZContour>& contours);
+
+
+// ---- the pruning grid (zlevel_grid.cpp) ----
+
+}  // namespace ncpath::zlevel_detail
+
+namespace ncpath {
+
+// The per-level buffers (ZLevelWorkspace): about 55 MB after a level of a 1.2 M-facet mesh.
+struct ZLevelWorkspace::Buffers {
+  std::vector<std::uint64_t> bits, pbits, vbits;
+  std::vector<std::uint32_t> cand, stamp;
+  std::vector<zlevel_detail::Box4f> cand_box, rbox;
+  std::vector<zlevel_detail::Region> regions;
+  std::vector<zlevel_detail::Curve> curves, act, rest, tmp;
+  std::vector<zlevel_detail::Joint> joints;
+  zlevel_detail::CellLists region_cells, curve_cells;
+  std::vector<zlevel_detail::Split> splits;
+};
+
+}  // namespace ncpath
+
+namespace ncpath::zlevel_detail {
+
+using Workspace = ZLevelWorkspace::Buffers;
+
+// The candidates that reach the level, in id order (ws.cand) with their boxes, floats rounded
+// outwards (ws.cand_box), and the mesh points at the ends of candidate edges and vertices
+// (ws.pbits: their discs mark interior cells); ext becomes their boxes' union. The given ids
+// become a bitmap first: sorted, without repeats, independent of their order.
+void gather_candidates(const OffsetElements& el, std::span<const std::uint32_t> candidates,
+                       const Level& lv, const ZLevelParams& params, Workspace& ws,
+                       ZLevelStats& st, double ext[4]);
+
+// The grid over ext (cells of params.cell, else R / 2; at most 4e6 of them), its interior
+// cells marked and the prefix sums of its open cells.
+Grid level_grid(const OffsetElements& el, const Workspace& ws, const Level& lv,
+                const ZLevelInside* inside, const ZLevelParams& params, const double ext[4],
+                ZLevelStats& st);
 
 }  // namespace ncpath::zlevel_detail
