@@ -24,12 +24,6 @@ namespace ncpath {
 
 namespace {
 
-double polyline_length(const std::vector<Vec3>& p) {
-  double s = 0;
-  for (std::size_t i = 1; i < p.size(); ++i) s += (p[i] - p[i - 1]).norm();
-  return s;
-}
-
 struct Candidates {
   std::vector<PencilCandidate> cand;
   std::vector<ElementPair> refs;

@@ -144,13 +144,13 @@ std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths,
   return out;
 }
 
-namespace {
-
-double length(const std::vector<Vec3>& p) {
+double polyline_length(std::span<const Vec3> p) {
   double s = 0;
   for (std::size_t i = 1; i < p.size(); ++i) s += (p[i] - p[i - 1]).norm();
   return s;
 }
+
+namespace {
 
 // Outward direction at end e (0 start, 1 end) of polyline p; zero for a single point.
 Vec3 outward(const std::vector<Vec3>& p, int e) {
@@ -229,12 +229,6 @@ Vec3 tangent_at(const std::vector<Vec3>& p, std::size_t i) {
   const Vec3 d = p[std::min(i + 1, p.size() - 1)] - p[i > 0 ? i - 1 : 0];
   const double n = d.norm();
   return n > 0 ? Vec3(d / n) : Vec3::Zero();
-}
-
-double polyline_length(const std::vector<Vec3>& p) {
-  double s = 0;
-  for (std::size_t i = 1; i < p.size(); ++i) s += (p[i] - p[i - 1]).norm();
-  return s;
 }
 
 }  // namespace
@@ -371,7 +365,7 @@ std::vector<std::vector<Vec3>> merge_paths(std::vector<std::vector<Vec3>> paths,
       cur = nx / 2;
       enter = int(nx % 2);
     }
-    if (length(poly) >= min_length) out.push_back(std::move(poly));
+    if (polyline_length(poly) >= min_length) out.push_back(std::move(poly));
   }
   return out;
 }

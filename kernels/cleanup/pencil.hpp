@@ -84,6 +84,9 @@ struct OrderedPath {
 std::vector<OrderedPath> order_paths(std::span<const std::vector<Vec3>> paths,
                                      std::span<const std::uint8_t> fixed = {});
 
+// Length of a polyline, mm.
+double polyline_length(std::span<const Vec3> p);
+
 // Joins polylines whose ends are within `merge_distance` (mm) and whose end directions agree
 // (cos >= min_cos), repeatedly, in a deterministic order; drops the results shorter than
 // `min_length` (mm). Returns the joined polylines.
