@@ -42,17 +42,31 @@ Vec3 turned(const Vec3& v, double deg) {
   return {c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z()};
 }
 
+constexpr double kR = 2;  // ball radius, mm
+constexpr double kPoses[] = {0.0, 37.3, 90.0};  // degrees about z
+
+// The part turned by `deg`, and its pencil-cut (ball radius kR, interval 0.5, step-down 1).
+struct TurnedRun {
+  TriangleMesh mesh;
+  PencilParams params;
+  PencilResult result;
+};
+TurnedRun pencil_turned(double deg) {
+  TurnedRun t;
+  t.mesh = plate_with_block();
+  for (Vec3& v : t.mesh.vertices) v = turned(v, deg);
+  t.params.interval = 0.5;
+  t.params.step_down = 1;
+  RunControl control;
+  t.result = run_pencil(t.mesh, ball_cutter(2 * kR), t.params, control);
+  return t;
+}
+
 TEST(PencilOutline, ABallHangingOverTheOutlineIsNoCreaseInAnyPose) {
-  const double R = 2;
-  PencilParams p;
-  p.interval = 0.5;
-  p.step_down = 1;
-  for (double deg : {0.0, 37.3, 90.0}) {
+  for (double deg : kPoses) {
     SCOPED_TRACE("turned " + std::to_string(deg) + " degrees");
-    TriangleMesh mesh = plate_with_block();
-    for (Vec3& v : mesh.vertices) v = turned(v, deg);
-    RunControl control;
-    const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+    const TurnedRun t = pencil_turned(deg);
+    const PencilResult& r = t.result;
     ASSERT_FALSE(r.paths.empty());
     // Every ball centre over the plate (back in the upright frame).
     for (const auto& path : r.paths)
@@ -64,22 +78,16 @@ TEST(PencilOutline, ABallHangingOverTheOutlineIsNoCreaseInAnyPose) {
         EXPECT_LE(c.y(), 20 + 1e-6);
       }
     EXPECT_GT(r.stats.hanging_points, 0u);
-    test_meshes::expect_no_gouge(mesh, r.paths, R);
+    test_meshes::expect_no_gouge(t.mesh, r.paths, kR);
   }
 }
 
 TEST(PencilOutline, TheBlocksFootIsTracedOnceInAnyPose) {
-  const double R = 2;
-  const double expected = 2 * 5.5 + 10 + std::numbers::pi * R + 2 * R * std::asin(0.5 / R);
-  PencilParams p;
-  p.interval = 0.5;
-  p.step_down = 1;
-  for (double deg : {0.0, 37.3, 90.0}) {
+  const double expected = 2 * 5.5 + 10 + std::numbers::pi * kR + 2 * kR * std::asin(0.5 / kR);
+  for (double deg : kPoses) {
     SCOPED_TRACE("turned " + std::to_string(deg) + " degrees");
-    TriangleMesh mesh = plate_with_block();
-    for (Vec3& v : mesh.vertices) v = turned(v, deg);
-    RunControl control;
-    const PencilResult r = run_pencil(mesh, ball_cutter(2 * R), p, control);
+    const TurnedRun t = pencil_turned(deg);
+    const PencilResult& r = t.result;
     ASSERT_EQ(r.paths.size(), 1u);
     // Chords inscribed in the corner arcs (sagitta <= tolerance) and ends placed by bisection
     // to 1/128 of the interval: within 0.05 mm.
@@ -87,7 +95,7 @@ TEST(PencilOutline, TheBlocksFootIsTracedOnceInAnyPose) {
     // On the plate's top, or lifted where a chord of a corner arc passes the block's edge.
     for (const Vec3& q : r.paths[0]) {
       EXPECT_GE(q.z(), 3 - 1e-9);
-      EXPECT_LE(q.z(), 3 + p.tolerance);
+      EXPECT_LE(q.z(), 3 + t.params.tolerance);
     }
   }
 }
