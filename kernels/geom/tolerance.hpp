@@ -404,8 +404,10 @@ inline constexpr double kZLevelParallel = 1e-15;
 inline constexpr double kZLevelSameDirection = 1e-12;
 
 // Dimensionless. Rounding of the conic implicit function F = Q_D(P_C(s)) relative to the
-// squared scale of D (its largest diameter): root isolation keeps intervals whose bound is
-// within this of zero. Newton steps stop below kZLevelStep relative to the point's size.
+// squared scale of the differences it is computed from (a circle's diameter; for an edge's
+// ellipse, the distance from the edge's end point to C's points plus R, not the ellipse's
+// diameter, which is R / slope): root isolation keeps intervals whose bound is within this of
+// zero. Newton steps stop below kZLevelStep relative to the point's size.
 inline constexpr double kZLevelImplicitRounding = 1e-12;
 inline constexpr double kZLevelStep = 1e-15;
 

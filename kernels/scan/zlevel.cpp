@@ -125,11 +125,13 @@ namespace {
 // The splits where active curves i and j cross or touch (both curves' parameters); line
 // crossings carry their orientation, for the classification. Returns the number of hits.
 std::size_t crossing_splits(const std::vector<Curve>& act, std::uint32_t i, std::uint32_t j,
-                            const Level& lv, std::vector<Hit>& hits, std::vector<Split>& splits) {
+                            const Level& lv, std::vector<Hit>& hits, std::vector<Split>& splits,
+                            ZLevelStats& st) {
   hits.clear();
   bool coincident;
   const Curve &C = act[i], &D = act[j];
   intersect_curves(C, D, lv, hits, coincident);
+  st.coincident_pairs += coincident;
   const bool lines = !coincident && C.kind == CurveKind::kLine && D.kind == CurveKind::kLine &&
                      cross2(D.dir, C.dir) != 0;
   const std::int8_t enter = !lines ? 0 : cross2(D.dir, C.dir) > 0 ? 1 : -1;
@@ -371,7 +373,7 @@ void level_splits(Workspace& ws, const std::vector<std::uint32_t>& act_begin,
     std::vector<Hit> hits;
     for_each_pair(el, ws, grid, [&](std::uint32_t i, std::uint32_t j) {
       ++st.pairs;
-      st.crossings += crossing_splits(act, i, j, lv, hits, splits);
+      st.crossings += crossing_splits(act, i, j, lv, hits, splits, st);
     });
   }
   sort_splits(splits);

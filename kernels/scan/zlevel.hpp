@@ -162,6 +162,7 @@ struct ZLevelStats {
   std::uint64_t active_curves = 0;     // trimmed curves (parts not certified inside U)
   std::uint64_t pairs = 0;             // curve pairs intersected
   std::uint64_t crossings = 0;         // crossing points found
+  std::uint64_t coincident_pairs = 0;  // pairs taken as one curve (split at each other's ends)
   std::uint64_t pieces = 0;            // pieces classified
   std::uint64_t kept = 0;              // pieces on the boundary
   std::uint64_t open_chains = 0;       // chains that could not be closed (0 in a valid result)

@@ -218,13 +218,29 @@ struct RootSearch {
   }
 };
 
+// The length whose square scales the rounding of Q's implicit function at the points of P: a
+// circle's diameter; for an ellipse (a cylinder around an edge), twice the largest distance
+// from the cylinder's axis point to P's box at the level, plus the radius, since the implicit
+// is computed from that difference. Not the ellipse's diameter: a nearly horizontal edge's
+// ellipse is R / slope long (46 m at slope 6.5e-5), and a slack of its square kept every
+// interval of a grazing crossing open until the search gave up and called the curves
+// coincident.
+double implicit_scale(const Curve& Q, const Curve& P, double zc) {
+  if (Q.kind != CurveKind::kEllipse) return 2 * std::max(Q.r1, Q.r2);
+  double far = 0;
+  for (const double x : {P.box[0], P.box[2]})
+    for (const double y : {P.box[1], P.box[3]})
+      far = std::max(far, Vec3(x - Q.ax_p.x(), y - Q.ax_p.y(), zc - Q.ax_p.z()).norm());
+  return 2 * (far + Q.r2);
+}
+
 void conic_conic(const Curve& C, const Curve& D, const Level& lv, std::vector<Hit>& out,
                  bool& coincident) {
   // Parametrise the slower curve (a circle, or the steeper edge's ellipse).
   const bool swap = curve_speed(D) < curve_speed(C);
   const Curve& P = swap ? D : C;
   const Curve& Q = swap ? C : D;
-  const double scale = 2 * std::max(Q.r1, Q.r2);
+  const double scale = implicit_scale(Q, P, lv.zc);
   const double f0 = curve_implicit(Q, P.a, lv.zc), f1 = curve_implicit(Q, P.b, lv.zc);
   const double fm = curve_implicit(Q, curve_point(P, 0.5 * P.len), lv.zc);
   const double on = tol::kZLevelOnBoundary * scale;

@@ -151,13 +151,14 @@ TEST(FormerScanGouges, NearlyHorizontalEdgesAtTheEndsOfTheirSections) {
   }
 }
 
-// Found by the soak (2026-11-29), not fixed yet: relief seed 1020 with the 6 mm ball, at full
-// precision, keeps 21 chains open at tip z -0.41. At the vertex (40, 28.0014, -0.3837) two
-// edges' ellipses and the vertex's disc are nearly tangent; the ellipses cross twice 0.006 mm
-// apart and each lens piece is classified inside the other's region (by 2.6e-11 and 9.1e-10
-// mm: a crossing the splits missed), so the map has a gap, is not sound, and its fallback
-// links the rest. Enable when fixed.
-TEST(KnownOpenZLevel, DISABLED_ReliefSeed1020ClosesEveryContour) {
+// Found by the soak (2026-11-29): relief seed 1020 with the 6 mm ball, at full precision, kept
+// 21 chains open at tip z -0.41. Two rim edges rising at slopes 6.5e-5 and 1.9e-3 meet at
+// (40, 28.0014, -0.3837); their ellipses (46 m and 1.6 m long) cross at a grazing angle. The
+// root search scaled its rounding slack by the longer ellipse's length squared (a slack of 1.4
+// micrometres), gave up and took the curves as coincident; split at each other's ends, one
+// piece lay 4e-5 mm off its curve and the map had a gap (kernel regression:
+// ZLevel.FlatRidgeEllipsesCrossingAtAGrazingAngle).
+TEST(FormerOpenZLevel, ReliefSeed1020ClosesEveryContour) {
   const TriangleMesh part = test::random_relief(1020);
   const test::KernelRun r = test::run_zlevel_checked(part, 3, kStepDown, 0.5);
   expect_clean(r, "relief seed 1020 R 3 z-level");

@@ -306,6 +306,41 @@ TEST(ZLevel, GrazingClipLineCrossing) {
   }
 }
 
+// A roof whose ridge rises at slopes of 6.5e-5 and 1e-5 and turns by 1.5e-4 rad at its middle
+// vertex: the two ridge edges' ellipses are 46 and 300 m long and cross at a grazing angle
+// beside the vertex, within a micrometre of each other over millimetres. Regression, found on
+// a generated relief (tests/engine/robustness_test.cpp, relief seed 1020): the root search's
+// rounding slack was scaled by the ellipse's length squared, kept every interval of that
+// stretch open until it gave up, and called the curves coincident; the splits at the other
+// curve's ends then cut a piece 4e-5 mm off its curve, and the contour was left open.
+TEST(ZLevel, FlatRidgeEllipsesCrossingAtAGrazingAngle) {
+  const double R = 3, h = 5, eave = 8;
+  const double x[3] = {0, 20, 40}, y[3] = {0, 0.0015, 0};
+  const double z[3] = {h, h + 20 * 6.5e-5, h + 20 * 6.5e-5 + 20 * 1e-5};
+  TriangleMesh mesh;
+  for (int i = 0; i < 3; ++i) {
+    mesh.vertices.emplace_back(x[i], y[i], z[i]);       // ridge 3 i
+    mesh.vertices.emplace_back(x[i], y[i] - eave, 0);   // eave -y
+    mesh.vertices.emplace_back(x[i], y[i] + eave, 0);   // eave +y
+  }
+  for (std::uint32_t i = 0; i < 2; ++i) {
+    const std::uint32_t r0 = 3 * i, r1 = 3 * i + 3;
+    mesh.facets.push_back({r0, r0 + 1, r1 + 1});
+    mesh.facets.push_back({r0, r1 + 1, r1});
+    mesh.facets.push_back({r0, r1, r1 + 2});
+    mesh.facets.push_back({r0, r1 + 2, r0 + 2});
+  }
+  const OffsetElements el = build_offset_elements(mesh, R, Coplanar::kKeep);
+  Oracle o(mesh, el);
+  std::mt19937_64 rng(10);
+  for (double f : {0.2, 0.35, 0.5, 0.65, 0.8}) {
+    const ZLevelResult r = run(el, z[1] + f * R - R);
+    EXPECT_EQ(r.contours.size(), 1u) << "f " << f;
+    EXPECT_EQ(r.stats.coincident_pairs, 0u) << "f " << f;
+    check_result(o, r, rng, -4, -12, 44, 12, 300);
+  }
+}
+
 // A square tower whose walls are cut into 40 bands: below the top every band's edges and
 // corners shadow the same lines and circles. The contour is the square dilated by R (area
 // exact, with the link gaps at the near-tangent joints), and the stacked coincident curves
