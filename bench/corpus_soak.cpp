@@ -2,12 +2,14 @@
 // tests/engine/robustness_test.cpp over many more seeds, or over any meshes.
 //
 //   ncpath_corpus_soak [--seeds 2000] [--first 0] [--kind cad|relief|both]
-//                      [--mesh PATH ...] [--fit-xy 100] [--threads 2] [--verbose]
+//                      [--mesh PATH ...] [--fit-xy 100] [--step-down 3] [--threads 2]
+//                      [--verbose]
 //
 // Generated parts (tests/support/random_parts.hpp): per seed a ball of 1, 3 or 6 mm and one
 // representation (tests/support/representation_variants.hpp) picked from the seed; scan,
 // z-levels and pencil on the representation and, for z-levels and pencil, on the
-// full-precision part. Meshes (--mesh): fit to --fit-xy, balls of 1, 3 and 6 mm, no variant.
+// full-precision part. Meshes (--mesh): fit to --fit-xy, balls of 1, 3 and 6 mm, no variant,
+// z-levels every --step-down mm (the CI test's 3 mm by default).
 // A line per failed check; at the end the counts per kind of check (raster, scan, z-level,
 // z-level areas, pencil, pencil invariance). Exit code 1 if anything failed.
 #include <CLI/CLI.hpp>
@@ -108,7 +110,7 @@ void soak_seed(Tally& t, bool cad, std::uint64_t seed, bool verbose) {
   same_pencil(t, pf, pv, what);
 }
 
-void soak_mesh(Tally& t, const std::string& path, double fit, bool verbose) {
+void soak_mesh(Tally& t, const std::string& path, double fit, double step_down, bool verbose) {
   io::MeshReadResult r = io::read_mesh(path);
   MeshTransform tr;
   tr.fit_xy_mm = fit;
@@ -119,7 +121,7 @@ void soak_mesh(Tally& t, const std::string& path, double fit, bool verbose) {
     clean(t, "raster", test::run_raster_checked(r.mesh, R, 2 * kScanInterval, 0.5),
           what + " raster");
     clean(t, "scan", test::run_scan_checked(r.mesh, R, 2 * kScanInterval), what + " scan");
-    clean(t, "z-level", test::run_zlevel_checked(r.mesh, R, 2 * kStepDown, 1.0),
+    clean(t, "z-level", test::run_zlevel_checked(r.mesh, R, step_down, 1.0),
           what + " z-level");
     clean(t, "pencil", test::run_pencil_checked(r.mesh, R, 2 * kPencilInterval, 2 * kPencilStep),
           what + " pencil");
@@ -133,7 +135,7 @@ int main(int argc, char** argv) {
   long seeds = 2000, first = 0;
   std::string kind = "both";
   std::vector<std::string> meshes;
-  double fit = 100;
+  double fit = 100, step_down = 2 * kStepDown;
   int threads = 2;
   bool verbose = false;
   app.add_option("--seeds", seeds, "Generated parts per kind");
@@ -141,13 +143,15 @@ int main(int argc, char** argv) {
   app.add_option("--kind", kind, "cad, relief or both")->check(CLI::IsMember({"cad", "relief", "both"}));
   app.add_option("--mesh", meshes, "Meshes to check instead of generated parts");
   app.add_option("--fit-xy", fit, "Meshes: longest xy side, mm");
+  app.add_option("--step-down", step_down, "Meshes: distance between z-levels, mm")
+      ->check(CLI::PositiveNumber);
   app.add_option("--threads", threads);
   app.add_flag("--verbose", verbose, "Print each part before its checks");
   CLI11_PARSE(app, argc, argv);
   par::ThreadLimit limit(threads);
   Tally t;
   if (!meshes.empty()) {
-    for (const std::string& m : meshes) soak_mesh(t, m, fit, verbose);
+    for (const std::string& m : meshes) soak_mesh(t, m, fit, step_down, verbose);
   } else {
     for (long s = first; s < first + seeds; ++s) {
       if (kind != "relief") soak_seed(t, true, std::uint64_t(s), verbose);
