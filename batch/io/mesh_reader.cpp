@@ -35,7 +35,8 @@ constexpr std::uint64_t kOffBytesPerFacetMin = 11;
 }  // namespace
 
 MeshReadResult read_mesh(const std::filesystem::path& path) {
-  const std::string bytes = detail::read_file_bytes(path);
+  const detail::FileBytes file(path);
+  const std::string_view bytes = file.view();
   if (has_off_extension(path) ||
       (detail::starts_with_keyword(bytes, "off", true) && !is_size_consistent_binary_stl(bytes)))
     return detail::parse_off(path, bytes);
@@ -60,11 +61,13 @@ std::uint64_t facet_count_hint(const std::filesystem::path& path) {
 }
 
 MeshReadResult read_stl(const std::filesystem::path& path) {
-  return detail::parse_stl(path, detail::read_file_bytes(path));
+  const detail::FileBytes file(path);
+  return detail::parse_stl(path, file.view());
 }
 
 MeshReadResult read_off(const std::filesystem::path& path) {
-  return detail::parse_off(path, detail::read_file_bytes(path));
+  const detail::FileBytes file(path);
+  return detail::parse_off(path, file.view());
 }
 
 }  // namespace ncpath::io

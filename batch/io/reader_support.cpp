@@ -7,6 +7,7 @@
 #include <memory>
 #include <system_error>
 
+
 #include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::io::detail {
@@ -55,6 +56,32 @@ std::string read_file_bytes(const std::filesystem::path& path) {
     throw ReadError(path, "byte " + std::to_string(used),
                     std::string("read failed: ") + std::strerror(errno));
   return bytes;
+}
+
+FileBytes::FileBytes(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size == 0 || !std::filesystem::is_regular_file(path, ec)) {
+    copy_ = read_file_bytes(path);  // its messages; a pipe, an empty file
+    return;
+  }
+  errno = 0;
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  if (!file) {
+    const int err = errno;
+    throw ReadError(path, "",
+                    std::string("cannot open: ") + (err ? std::strerror(err) : "unknown error"));
+  }
+  buf_.reset(new char[size]);  // not value-initialised: no zero fill
+  size_ = std::fread(buf_.get(), 1, size, file.get());
+  if (std::ferror(file.get()))
+    throw ReadError(path, "byte " + std::to_string(size_),
+                    std::string("read failed: ") + std::strerror(errno));
+  if (size_ == size && std::fgetc(file.get()) != EOF) {  // it grew since: read it as it is now
+    buf_.reset();
+    size_ = 0;
+    copy_ = read_file_bytes(path);
+  }
 }
 
 bool starts_with_keyword(std::string_view s, std::string_view keyword, bool allow_comments) {

@@ -8,6 +8,7 @@
 
 #include "batch/io/reader_support.hpp"
 #include "engine/parallel.hpp"
+#include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::io::detail {
 namespace {
@@ -51,6 +52,79 @@ bool looks_like_text(std::string_view bytes) {
   return true;
 }
 
+// Binary facets are parsed in chunks of this many, in parallel (the chunks depend on the
+// facet count only, so the result does not depend on the thread count).
+constexpr std::uint64_t kBinaryChunkFacets = 1 << 16;
+
+// Facet f's three vertices; false (and the first bad coordinate's index 0-8 in `bad`) when
+// one is not finite.
+bool load_facet(const char* facets, std::uint64_t f, Vec3 v[3], int& bad) {
+  float xyz[9];
+  std::memcpy(xyz, facets + f * kFacetBytes + 12, sizeof xyz);  // skip the normal
+  for (int i = 0; i < 9; ++i) {
+    if (!std::isfinite(xyz[i])) {
+      bad = i;
+      return false;
+    }
+    v[i / 3][i % 3] = xyz[i];
+  }
+  return true;
+}
+
+// The soup of `count` binary facets: a first pass per chunk finds non-finite coordinates
+// and counts the facets kept (degenerate ones are skipped, as MeshBuilder does), a second
+// writes each chunk's facets at its offset. File order, whatever the threads.
+MeshReadResult binary_facets(const std::filesystem::path& path, const char* facets,
+                             std::uint64_t count) {
+  const std::uint64_t chunks = (count + kBinaryChunkFacets - 1) / kBinaryChunkFacets;
+  std::vector<std::uint64_t> kept(chunks + 1, 0), first_bad(chunks, count);
+  std::vector<int> bad_coord(chunks, 0);
+  par::for_each(chunks, 1, [&](std::size_t c) {
+    const std::uint64_t f1 = std::min(count, (c + 1) * kBinaryChunkFacets);
+    Vec3 v[3];
+    for (std::uint64_t f = c * kBinaryChunkFacets; f < f1; ++f) {
+      if (!load_facet(facets, f, v, bad_coord[c])) {
+        first_bad[c] = f;
+        return;
+      }
+      kept[c + 1] += !is_degenerate_facet(v[0], v[1], v[2]);
+    }
+  });
+  for (std::uint64_t c = 0; c < chunks; ++c) {
+    if (first_bad[c] == count) continue;
+    const std::uint64_t f = first_bad[c];
+    const int i = bad_coord[c];
+    float x;
+    std::memcpy(&x, facets + f * kFacetBytes + 12 + 4 * i, 4);
+    throw ReadError(path, byte_at(kFirstFacet + f * kFacetBytes + 12 + 4 * i, f),
+                    "non-finite coordinate in facet " + std::to_string(f + 1) + ": " +
+                        ordinal_vertex(i / 3) + " has " + kAxis[i % 3] + " = " + num(x));
+  }
+  for (std::uint64_t c = 0; c < chunks; ++c) kept[c + 1] += kept[c];
+  MeshReadResult out;
+  out.stats.format = "stl-binary";
+  out.stats.facets_in_file = count;
+  out.stats.facets_degenerate = count - kept[chunks];
+  out.mesh.vertices.resize(3 * kept[chunks]);
+  out.mesh.facets.resize(kept[chunks]);
+  par::for_each(chunks, 1, [&](std::size_t c) {
+    const std::uint64_t f1 = std::min(count, (c + 1) * kBinaryChunkFacets);
+    auto at = static_cast<std::uint32_t>(kept[c]);
+    Vec3 v[3];
+    int bad = 0;
+    for (std::uint64_t f = c * kBinaryChunkFacets; f < f1; ++f) {
+      load_facet(facets, f, v, bad);
+      if (is_degenerate_facet(v[0], v[1], v[2])) continue;
+      for (int k = 0; k < 3; ++k) out.mesh.vertices[3 * at + k] = v[k];
+      out.mesh.facets[at] = {3 * at, 3 * at + 1, 3 * at + 2};
+      ++at;
+    }
+  });
+  MeshBuilder builder("stl-binary");
+  builder.result() = std::move(out);
+  return builder.finish(path);
+}
+
 MeshReadResult parse_binary(const std::filesystem::path& path, std::string_view bytes) {
   const std::uint64_t size = bytes.size();
   const std::uint64_t count = load_u32(bytes.data() + kHeaderBytes);
@@ -82,29 +156,7 @@ MeshReadResult parse_binary(const std::filesystem::path& path, std::string_view 
                     std::to_string(count) + " facets are too many (at most " +
                         std::to_string(kMaxSoupFacets) + " with 32-bit vertex indices)");
 
-  MeshBuilder builder("stl-binary");
-  builder.result().stats.facets_in_file = count;
-  builder.reserve(3 * count, count);
-  const char* facet = bytes.data() + kFirstFacet;
-  for (std::uint64_t f = 0; f < count; ++f, facet += kFacetBytes) {
-    float xyz[9];
-    std::memcpy(xyz, facet + 12, sizeof xyz);  // skip the normal
-    Vec3 v[3];
-    for (int k = 0; k < 3; ++k) {
-      for (int a = 0; a < 3; ++a) {
-        const float c = xyz[3 * k + a];
-        if (!std::isfinite(c)) {
-          const std::uint64_t at = kFirstFacet + f * kFacetBytes + 12 + 4 * (3 * k + a);
-          throw ReadError(path, byte_at(at, f),
-                          "non-finite coordinate in facet " + std::to_string(f + 1) + ": " +
-                              ordinal_vertex(k) + " has " + kAxis[a] + " = " + num(c));
-        }
-        v[k][a] = c;
-      }
-    }
-    builder.add_soup_facet(v[0], v[1], v[2]);
-  }
-  return builder.finish(path);
+  return binary_facets(path, bytes.data() + kFirstFacet, count);
 }
 
 // ASCII STL: solid / facet normal / outer loop / 3 x vertex / endloop / endfacet /

@@ -2,11 +2,14 @@
 // ASCII, detection, and every malformed-input message.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "batch/io/mesh_reader.hpp"
+#include "engine/parallel.hpp"
 #include "tests/batch/io/test_files.hpp"
 
 namespace ncpath::io {
@@ -152,6 +155,56 @@ TEST(StlReaderTest, DegenerateFacetsAreSkippedAndCounted) {
   EXPECT_EQ(r.stats.facets_read, 2u);
   ASSERT_EQ(r.mesh.facets.size(), 2u);
   EXPECT_EQ(r.mesh.vertices[r.mesh.facets[1][0]], Vec3(5, 0, 0));  // the 4th facet, kept
+}
+
+// 200,000 facets (binary facets are parsed in chunks of 65,536, in parallel): degenerate ones
+// on both sides of the chunk boundaries and at random are skipped, the others kept in file
+// order, each facet's vertices as written (the generator's list, not a second reader); the
+// same with 1 and 2 threads. A non-finite coordinate in the third chunk and one in the second
+// report the second's, as a serial reader meets it first.
+TEST(StlReaderTest, BinaryChunksKeepFileOrderAndTheFirstError) {
+  TempDir dir;
+  std::vector<RawFacet> facets;
+  std::vector<std::array<float, 3>> expected;  // first vertex of each kept facet
+  std::uint64_t degenerate = 0;
+  for (std::uint32_t f = 0; f < 200000; ++f) {
+    const float x = float(f % 1000), y = float(f / 1000);
+    const bool flat = f % 65536 == 0 || f % 65536 == 65535 || f % 997 == 3;
+    facets.push_back(flat ? raw_facet({x, y, 0}, {x + 1, y, 0}, {x + 2, y, 0})
+                          : raw_facet({x, y, 1}, {x + 1, y, 1}, {x, y + 1, 1}));
+    if (flat)
+      ++degenerate;
+    else
+      expected.push_back({x, y, 1});
+  }
+  const auto path = dir.write("many.stl", binary_stl("h", facets));
+  MeshReadResult one, two;
+  {
+    par::ThreadLimit limit(1);
+    one = read_stl(path);
+  }
+  {
+    par::ThreadLimit limit(2);
+    two = read_stl(path);
+  }
+  EXPECT_EQ(one.stats.facets_degenerate, degenerate);
+  ASSERT_EQ(one.mesh.facets.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    const auto& f = one.mesh.facets[k];
+    ASSERT_EQ(f, (std::array<std::uint32_t, 3>{3 * std::uint32_t(k), 3 * std::uint32_t(k) + 1,
+                                               3 * std::uint32_t(k) + 2}));
+    ASSERT_EQ(one.mesh.vertices[f[0]], Vec3(expected[k][0], expected[k][1], expected[k][2]));
+    ASSERT_EQ(one.mesh.vertices[f[2]], Vec3(expected[k][0], expected[k][1] + 1, 1));
+  }
+  EXPECT_EQ(one.mesh.vertices, two.mesh.vertices);
+  EXPECT_EQ(one.mesh.facets, two.mesh.facets);
+
+  facets[150000][5] = std::numeric_limits<float>::infinity();  // chunk 3, vertex 1 z
+  facets[70000][9] = std::numeric_limits<float>::quiet_NaN();  // chunk 2, vertex 3 x
+  const auto bad = dir.write("bad.stl", binary_stl("h", facets));
+  // Facet 70,001 starts at byte 84 + 50 * 70,000; its third vertex's x is its float 9: + 36.
+  expect_read_error([&] { read_stl(bad); },
+                    {"byte 3500120 (facet 70001)", "non-finite", "vertex 3", "x = nan"});
 }
 
 TEST(StlReaderTest, NoFacetsLeftIsAnError) {
