@@ -71,48 +71,59 @@ bool load_facet(const char* facets, std::uint64_t f, Vec3 v[3], int& bad) {
   return true;
 }
 
+// Binary facets [c kBinaryChunkFacets, (c + 1) kBinaryChunkFacets) clipped to `count`.
+struct FacetChunk {
+  std::uint64_t begin, end;
+  FacetChunk(std::size_t c, std::uint64_t count)
+      : begin(c * kBinaryChunkFacets), end(std::min(count, (c + 1) * kBinaryChunkFacets)) {}
+};
+
+// ReadError for facet f's coordinate i (0-8), which is not finite.
+[[noreturn]] void throw_non_finite(const std::filesystem::path& path, const char* facets,
+                                   std::uint64_t f, int i) {
+  const std::uint64_t at = f * kFacetBytes + 12 + 4 * std::uint64_t(i);
+  float x;
+  std::memcpy(&x, facets + at, 4);
+  throw ReadError(path, byte_at(kFirstFacet + at, f),
+                  "non-finite coordinate in facet " + std::to_string(f + 1) + ": " +
+                      ordinal_vertex(i / 3) + " has " + kAxis[i % 3] + " = " + num(x));
+}
+
 // The soup of `count` binary facets: a first pass per chunk finds non-finite coordinates
 // and counts the facets kept (degenerate ones are skipped, as MeshBuilder does), a second
-// writes each chunk's facets at its offset. File order, whatever the threads.
+// writes each chunk's facets at its offset. File order, and the first error in file order,
+// whatever the threads.
 MeshReadResult binary_facets(const std::filesystem::path& path, const char* facets,
                              std::uint64_t count) {
   const std::uint64_t chunks = (count + kBinaryChunkFacets - 1) / kBinaryChunkFacets;
-  std::vector<std::uint64_t> kept(chunks + 1, 0), first_bad(chunks, count);
+  std::vector<std::uint64_t> offset(chunks + 1, 0), first_bad(chunks, count);
   std::vector<int> bad_coord(chunks, 0);
   par::for_each(chunks, 1, [&](std::size_t c) {
-    const std::uint64_t f1 = std::min(count, (c + 1) * kBinaryChunkFacets);
+    const FacetChunk ch(c, count);
     Vec3 v[3];
-    for (std::uint64_t f = c * kBinaryChunkFacets; f < f1; ++f) {
+    for (std::uint64_t f = ch.begin; f < ch.end; ++f) {
       if (!load_facet(facets, f, v, bad_coord[c])) {
         first_bad[c] = f;
         return;
       }
-      kept[c + 1] += !is_degenerate_facet(v[0], v[1], v[2]);
+      offset[c + 1] += !is_degenerate_facet(v[0], v[1], v[2]);
     }
   });
-  for (std::uint64_t c = 0; c < chunks; ++c) {
-    if (first_bad[c] == count) continue;
-    const std::uint64_t f = first_bad[c];
-    const int i = bad_coord[c];
-    float x;
-    std::memcpy(&x, facets + f * kFacetBytes + 12 + 4 * i, 4);
-    throw ReadError(path, byte_at(kFirstFacet + f * kFacetBytes + 12 + 4 * i, f),
-                    "non-finite coordinate in facet " + std::to_string(f + 1) + ": " +
-                        ordinal_vertex(i / 3) + " has " + kAxis[i % 3] + " = " + num(x));
-  }
-  for (std::uint64_t c = 0; c < chunks; ++c) kept[c + 1] += kept[c];
-  MeshReadResult out;
-  out.stats.format = "stl-binary";
+  for (std::uint64_t c = 0; c < chunks; ++c)
+    if (first_bad[c] != count) throw_non_finite(path, facets, first_bad[c], bad_coord[c]);
+  for (std::uint64_t c = 0; c < chunks; ++c) offset[c + 1] += offset[c];
+  MeshBuilder builder("stl-binary");
+  MeshReadResult& out = builder.result();
   out.stats.facets_in_file = count;
-  out.stats.facets_degenerate = count - kept[chunks];
-  out.mesh.vertices.resize(3 * kept[chunks]);
-  out.mesh.facets.resize(kept[chunks]);
+  out.stats.facets_degenerate = count - offset[chunks];
+  out.mesh.vertices.resize(3 * offset[chunks]);  // Eigen vectors: not initialised
+  out.mesh.facets.resize(offset[chunks]);
   par::for_each(chunks, 1, [&](std::size_t c) {
-    const std::uint64_t f1 = std::min(count, (c + 1) * kBinaryChunkFacets);
-    auto at = static_cast<std::uint32_t>(kept[c]);
+    const FacetChunk ch(c, count);
+    auto at = static_cast<std::uint32_t>(offset[c]);
     Vec3 v[3];
     int bad = 0;
-    for (std::uint64_t f = c * kBinaryChunkFacets; f < f1; ++f) {
+    for (std::uint64_t f = ch.begin; f < ch.end; ++f) {
       load_facet(facets, f, v, bad);
       if (is_degenerate_facet(v[0], v[1], v[2])) continue;
       for (int k = 0; k < 3; ++k) out.mesh.vertices[3 * at + k] = v[k];
@@ -120,8 +131,6 @@ MeshReadResult binary_facets(const std::filesystem::path& path, const char* face
       ++at;
     }
   });
-  MeshBuilder builder("stl-binary");
-  builder.result() = std::move(out);
   return builder.finish(path);
 }
 
