@@ -8,10 +8,12 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "batch/io/stl_writer.hpp"
 #include "tests/batch/cli_run.hpp"
@@ -132,6 +134,20 @@ pid_t rank_pid(int rank, const std::string& marker) {
   return 0;
 }
 
+// Waits (up to 60 s) until no rank of the run whose command line holds `marker` is left.
+// mpirun can return before rank 0, stopped by its SIGTERM, has closed the output file, and
+// HDF5 locks a file while it is open (a test that opened it at once failed once in CI with
+// "unable to lock the file").
+void wait_for_ranks(int ranks, const std::string& marker) {
+  auto alive = [&] {
+    for (int r = 0; r < ranks; ++r)
+      if (rank_pid(r, marker) != 0) return true;
+    return false;
+  };
+  for (int i = 0; i < 600 && alive(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+}
+
 // Twelve raster jobs on three ranks; rank 2 is killed once four jobs have come back to
 // rank 0 (its progress lines). mpirun then stops the others (SIGTERM): rank 0 closes the
 // file with the jobs copied so far, each whole, and batch_complete = 0; no spool file is
@@ -164,6 +180,7 @@ TEST(MpiCli, AKilledRankLeavesTheFinishedJobsReadable) {
     }
   }
   const int status = pclose(p);
+  wait_for_ranks(3, out.string());
   ASSERT_TRUE(killed) << output;
   EXPECT_FALSE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
   h5::Id f = h5::open_read(out);
