@@ -7,7 +7,6 @@
 #include <memory>
 #include <system_error>
 
-
 #include "kernels/mesh/mesh_transform.hpp"
 
 namespace ncpath::io::detail {
@@ -20,20 +19,35 @@ bool is_space(char c) {
 struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
+using File = std::unique_ptr<std::FILE, FileCloser>;
 
-}  // namespace
-
-std::string read_file_bytes(const std::filesystem::path& path) {
+// The file opened for reading, or ReadError("is a directory" / "cannot open: <reason>").
+File open_for_reading(const std::filesystem::path& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw ReadError(path, "", "cannot read: it is a directory, not a file");
   errno = 0;
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
+  File file(std::fopen(path.c_str(), "rb"));
   if (!file) {
     const int err = errno;
     throw ReadError(path, "",
                     std::string("cannot open: ") + (err ? std::strerror(err) : "unknown error"));
   }
+  return file;
+}
+
+// ReadError("read failed") when the stream has an error, `used` bytes in.
+void check_read(const std::filesystem::path& path, std::FILE* file, std::size_t used) {
+  if (std::ferror(file))
+    throw ReadError(path, "byte " + std::to_string(used),
+                    std::string("read failed: ") + std::strerror(errno));
+}
+
+}  // namespace
+
+std::string read_file_bytes(const std::filesystem::path& path) {
+  const File file = open_for_reading(path);
+  std::error_code ec;
   // One read of the announced size, then chunks until the end in case the size was not
   // known (a pipe) or the file grew. Growing the string chunk by chunk from the start would
   // reallocate and copy big files several times.
@@ -52,9 +66,7 @@ std::string read_file_bytes(const std::filesystem::path& path) {
     if (got < kChunk) break;
   }
   bytes.resize(used);
-  if (std::ferror(file.get()))
-    throw ReadError(path, "byte " + std::to_string(used),
-                    std::string("read failed: ") + std::strerror(errno));
+  check_read(path, file.get(), used);
   return bytes;
 }
 
@@ -65,18 +77,10 @@ FileBytes::FileBytes(const std::filesystem::path& path) {
     copy_ = read_file_bytes(path);  // its messages; a pipe, an empty file
     return;
   }
-  errno = 0;
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) {
-    const int err = errno;
-    throw ReadError(path, "",
-                    std::string("cannot open: ") + (err ? std::strerror(err) : "unknown error"));
-  }
+  const File file = open_for_reading(path);
   buf_.reset(new char[size]);  // not value-initialised: no zero fill
   size_ = std::fread(buf_.get(), 1, size, file.get());
-  if (std::ferror(file.get()))
-    throw ReadError(path, "byte " + std::to_string(size_),
-                    std::string("read failed: ") + std::strerror(errno));
+  check_read(path, file.get(), size_);
   if (size_ == size && std::fgetc(file.get()) != EOF) {  // it grew since: read it as it is now
     buf_.reset();
     size_ = 0;
