@@ -38,7 +38,7 @@ const Case& seed000() {
     const std::filesystem::path dir = std::filesystem::path(NCPATH_SOURCE_DIR) / "datasets/pockets";
     std::vector<out::StatValue> stats;
     Case k;
-    k.regions = jobs::read_profile_regions(dir / "seed000.toml", 1e-6, stats).regions;
+    k.regions = jobs::read_profile_regions(dir / "seed000.toml", 1e-6, std::nullopt, stats).regions;
     k.bottom = io::read_surface_toml(dir / "seed000_bottom.toml");
     k.params.tool_radius = 6;
     k.params.scallop = 0.4;

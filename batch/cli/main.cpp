@@ -30,7 +30,7 @@ namespace {
 // Options of the profile commands (offset, pocket, pocket3d); defaults as in OffsetParams /
 // PocketParams.
 struct ProfileCli {
-  std::string profile, tool = "flat:6", out = "ncpath-out.h5", name, stepover;
+  std::string profile, tool = "flat:6", out = "ncpath-out.h5", name, stepover, units;
   int threads = 0;
   bool quiet = false;
   double stock = jobs::PocketParams{}.stock;
@@ -45,6 +45,9 @@ CLI::Option* add_profile(CLI::App* app, ProfileCli& c) {
       ->required();
   app->add_option("--tool", c.tool, "Cutter: ball:D, flat:D or bull:D:r (mm)")
       ->capture_default_str();
+  app->add_option("--units", c.units,
+                  "The drawing's units (mm, inch, foot, cm, m, micron, ...), overriding what it "
+                  "declares; default: the drawing's ($INSUNITS), else mm with a warning");
   app->add_option("--stock", c.stock, "Material left on walls and islands (mm)")
       ->capture_default_str();
   CLI::Option* tolerance =
@@ -97,6 +100,9 @@ void add_profile_job(const ProfileCli& c, jobs::Operation op,
   j.tool_text = c.tool;
   std::string e = jobs::parse_tool(c.tool, j.tool);
   if (!e.empty()) e = "--tool: " + e;
+  if (!c.units.empty())
+    if (std::string u = jobs::parse_units(c.units, j.units); !u.empty() && e.empty())
+      e = "--units " + u;
   if (std::string p = check(j); e.empty()) e = p;
   if (!e.empty()) {
     j.error = e;

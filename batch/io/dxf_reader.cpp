@@ -48,6 +48,9 @@ class Collector : public DL_CreationAdapter {
   ProfileSoup soup;
   std::optional<std::pair<std::uint64_t, std::string>> error;  // first fatal problem
 
+  // job_units: the job's units, which override the drawing's header.
+  explicit Collector(const std::optional<LengthUnit>& job_units) : job_units_(job_units) {}
+
   void processCodeValuePair(unsigned int code, const std::string& value) override {
     line_ += 2;
     const std::uint64_t code_line = line_ - 1;
@@ -60,6 +63,7 @@ class Collector : public DL_CreationAdapter {
       return;
     }
     if (code == 2 && expect_section_name_) section_ = value, expect_section_name_ = false;
+    if (section_ == "HEADER") header_pair(code, value, code_line);
     if (code == 5) current_.handle = value;
     if (code == 10) ++current_.n10;
     if (code == 11) ++current_.n11;
@@ -70,7 +74,8 @@ class Collector : public DL_CreationAdapter {
 
   void addLine(const DL_LineData& d) override {
     if (!usable()) return;
-    add_seg(make_line({d.x1, d.y1}, {d.x2, d.y2}), Vec2(d.x2 - d.x1, d.y2 - d.y1).norm());
+    const Vec2 a = mm(d.x1, d.y1), b = mm(d.x2, d.y2);
+    add_seg(make_line(a, b), (b - a).norm());
   }
 
   void addArc(const DL_ArcData& d) override {
@@ -78,23 +83,25 @@ class Collector : public DL_CreationAdapter {
     const double a1 = d.angle1 * std::numbers::pi / 180;
     double a2 = d.angle2 * std::numbers::pi / 180;
     while (a2 <= a1) a2 += 2 * std::numbers::pi;  // DXF arcs run counter-clockwise (in OCS)
-    const Vec2 c(d.cx, d.cy);
-    const Vec2 pa = c + d.radius * Vec2(std::cos(a1), std::sin(a1));
-    const Vec2 pb = c + d.radius * Vec2(std::cos(a2), std::sin(a2));
-    if (d.radius * (a2 - a1) < tol::kProfileZeroLength) return drop();
-    if ((pb - pa).norm() < tol::kProfileZeroLength) return add_circle(c, d.radius);
+    const Vec2 c = mm(d.cx, d.cy);
+    const double r = scale_ * d.radius;
+    const Vec2 pa = c + r * Vec2(std::cos(a1), std::sin(a1));
+    const Vec2 pb = c + r * Vec2(std::cos(a2), std::sin(a2));
+    if (r * (a2 - a1) < tol::kProfileZeroLength) return drop();
+    if ((pb - pa).norm() < tol::kProfileZeroLength) return add_circle(c, r);
     add_seg(make_arc(ocs(pa), ocs(pb), ocs(c), sx_ > 0), 1);
   }
 
   void addCircle(const DL_CircleData& d) override {
     if (!usable()) return;
-    if (d.radius < tol::kProfileZeroLength) return drop();
-    add_circle({d.cx, d.cy}, d.radius);
+    const double r = scale_ * d.radius;
+    if (r < tol::kProfileZeroLength) return drop();
+    add_circle(mm(d.cx, d.cy), r);
   }
 
   void addEllipse(const DL_EllipseData& d) override {
     if (!usable()) return;
-    const Vec2 c(d.cx, d.cy), m(d.mx, d.my);
+    const Vec2 c = mm(d.cx, d.cy), m = mm(d.mx, d.my);
     if (m.norm() * std::min(d.ratio, 1.0) < tol::kProfileZeroLength) return drop();
     double t1 = d.angle1, t2 = d.angle2;
     while (t2 <= t1) t2 += 2 * std::numbers::pi;
@@ -121,7 +128,7 @@ class Collector : public DL_CreationAdapter {
     if (!poly_) return;
     // A VERTEX object's own flags: 16 = spline frame control point, not on the curve.
     if (emitting_.type == "VERTEX" && (emitting_.flags70 & 16)) return;
-    poly_->push_back({ocs({d.x, d.y}), sx_ * d.bulge});
+    poly_->push_back({ocs(mm(d.x, d.y)), sx_ * d.bulge});
   }
 
   void endEntity() override {
@@ -140,19 +147,24 @@ class Collector : public DL_CreationAdapter {
   }
   void addControlPoint(const DL_ControlPointData& d) override {
     if (!spline_) return;
-    spline_->ctrl.emplace_back(d.x, d.y);
+    spline_->ctrl.push_back(mm(d.x, d.y));
     spline_->weights.push_back(d.w);
   }
   void addKnot(const DL_KnotData& d) override {
     if (spline_) spline_->knots.push_back(d.k);
   }
 
-  void finish() { finish_object(); }
+  void finish() {
+    finish_object();
+    resolve_units();
+  }
 
  private:
   // True when the entity being emitted is a top-level entity whose plane we can read.
   bool usable() {
     if (!emitting_.in_entities || error) return false;
+    resolve_units();
+    if (error) return false;
     const double* n = getExtrusion()->getDirection();
     if (std::abs(n[0]) >= tol::kDxfExtrusionAxis || std::abs(n[1]) >= tol::kDxfExtrusionAxis ||
         n[2] == 0) {
@@ -162,6 +174,8 @@ class Collector : public DL_CreationAdapter {
     sx_ = n[2] > 0 ? 1 : -1;
     return true;
   }
+  // A point of the file in mm (its coordinates times the drawing's unit).
+  Vec2 mm(double x, double y) const { return scale_ * Vec2(x, y); }
   // Object coordinates of a -Z extrusion are mirrored in x (DXF arbitrary axis algorithm).
   Vec2 ocs(const Vec2& p) const { return {sx_ * p.x(), p.y()}; }
 
@@ -251,6 +265,61 @@ class Collector : public DL_CreationAdapter {
     }
   }
 
+  // The HEADER's unit variables: "9 $INSUNITS" then "70 <code>" (likewise $MEASUREMENT).
+  void header_pair(unsigned int code, const std::string& value, std::uint64_t line) {
+    if (code == 9) {
+      header_var_ = value;
+      return;
+    }
+    if (code != 70 || (header_var_ != "$INSUNITS" && header_var_ != "$MEASUREMENT")) return;
+    if (units_resolved_ && !error)
+      error.emplace(line, header_var_ + " comes after the entities (ncpath reads the HEADER "
+                                        "section first; save the drawing again)");
+    auto& var = header_var_ == "$INSUNITS" ? insunits_ : measurement_;
+    var = {std::atoi(value.c_str()), line};
+  }
+
+  // The drawing's units, once, before its first entity: the job's, else $INSUNITS, else
+  // $MEASUREMENT (0 imperial: inches; 1 metric: mm), else mm with a warning.
+  void resolve_units() {
+    if (units_resolved_) return;
+    units_resolved_ = true;
+    if (job_units_) {
+      set_units(*job_units_, kUnitsFromJob);
+    } else if (insunits_ && insunits_->first != 0) {
+      const std::optional<LengthUnit> u = unit_by_insunits(insunits_->first);
+      if (!u) {
+        error.emplace(insunits_->second,
+                      "$INSUNITS " + std::to_string(insunits_->first) +
+                          " is not a unit code of the DXF reference (0 to 24); give the job's "
+                          "units (units = \"mm\", --units mm)");
+        return;
+      }
+      set_units(*u, kUnitsFromInsunits);
+    } else if (measurement_ && (measurement_->first == 0 || measurement_->first == 1)) {
+      const bool imperial = measurement_->first == 0;
+      set_units(*unit_by_name(imperial ? "inch" : "mm"), kUnitsFromMeasurement);
+      soup.units_warning = std::string("the drawing gives no $INSUNITS; read in ") +
+                           (imperial ? "inches" : "mm") + " from $MEASUREMENT = " +
+                           std::to_string(measurement_->first) +
+                           "; give the job's units (units = \"...\", --units) if that is wrong";
+    } else {
+      soup.units_warning =
+          "the drawing declares no units ($INSUNITS, $MEASUREMENT); read as mm; give the job's "
+          "units (units = \"inch\", --units inch) if that is wrong";
+    }
+  }
+  void set_units(const LengthUnit& u, const char* from) {
+    soup.units = u;
+    soup.units_from = from;
+    scale_ = u.mm_per_unit;
+  }
+
+  std::optional<LengthUnit> job_units_;
+  std::string header_var_;
+  std::optional<std::pair<int, std::uint64_t>> insunits_, measurement_;  // value, line
+  bool units_resolved_ = false;
+  double scale_ = 1;  // mm per drawing unit
   std::uint64_t line_ = 0;
   std::string section_;
   bool expect_section_name_ = false;
@@ -265,7 +334,7 @@ class Collector : public DL_CreationAdapter {
 
 }  // namespace
 
-ProfileSoup read_dxf(const std::filesystem::path& path) {
+ProfileSoup read_dxf(const std::filesystem::path& path, const std::optional<LengthUnit>& units) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw ReadError(path, "", "is a directory");
   std::ifstream probe(path, std::ios::binary);
@@ -277,7 +346,7 @@ ProfileSoup read_dxf(const std::filesystem::path& path) {
     throw ReadError(path, "", "binary DXF is not supported; save the drawing as ASCII DXF");
   probe.close();
 
-  Collector collector;
+  Collector collector(units);
   DL_Dxf dxf;
   if (!dxf.in(path.string(), &collector)) throw ReadError(path, "", "cannot open");
   collector.finish();

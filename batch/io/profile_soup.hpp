@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "batch/io/length_units.hpp"
 #include "kernels/pocket/profile.hpp"
 
 namespace ncpath::io {
@@ -24,6 +25,28 @@ struct ProfileSoup {
   std::uint64_t zero_length_dropped = 0;
   // Entities that were skipped, one line each, e.g. "skipped TEXT 3A: not a profile curve".
   std::vector<std::string> warnings;
+  // The drawing's units (every coordinate above is already in mm) and where they came from
+  // (length_units.hpp: kUnitsFromJob, kUnitsFromInsunits, ...).
+  LengthUnit units{"mm", 1};
+  std::string units_from = kUnitsFromDefault;
+  // Non-empty when the units were a guess the user should check (a drawing that declares
+  // none is read as mm), for the job's message.
+  std::string units_warning;
 };
+
+// Multiplies every coordinate (and radius) of the soup by soup.units.mm_per_unit, for a reader
+// that read the file in its own units.
+inline void scale_to_mm(ProfileSoup& soup) {
+  const double k = soup.units.mm_per_unit;
+  if (k == 1) return;
+  for (ProfileCurve& c : soup.curves) {
+    c.seg.a *= k;
+    c.seg.b *= k;
+    c.seg.c *= k;
+    c.seg.r *= k;
+  }
+  for (Nurbs2& n : soup.nurbs)
+    for (Vec2& p : n.ctrl) p *= k;
+}
 
 }  // namespace ncpath::io

@@ -22,11 +22,15 @@ class Parser : detail::TomlChecks {
  public:
   explicit Parser(std::filesystem::path path) : TomlChecks(std::move(path)) {}
 
-  ProfileSoup run(const toml::table& root) {
+  // job_units: the job's units, which override the file's `units` key.
+  ProfileSoup run(const toml::table& root, const std::optional<LengthUnit>& job_units) {
     for (const auto& [key, node] : root) {
       const std::string k(key.str());
       if (k == "units") {
-        if (node.value<std::string>() != "mm") fail(node, "units", "only \"mm\" is supported");
+        const std::optional<LengthUnit> u = unit_by_name(node.value_or(std::string()));
+        if (!u) fail(node, "units", "must be one of " + unit_names());
+        soup_.units = *u;
+        soup_.units_from = kUnitsFromFile;
       } else if (k != "loop" && k != "circle" && k != "polyline") {
         fail(node, k, "unknown key (expected [[loop]], [[circle]], [[polyline]] or units)");
       }
@@ -48,6 +52,11 @@ class Parser : detail::TomlChecks {
     }
     if (soup_.curves.empty())
       throw ReadError(path_, "", "no profile curves (add [[loop]], [[circle]] or [[polyline]])");
+    if (job_units) {
+      soup_.units = *job_units;
+      soup_.units_from = kUnitsFromJob;
+    }
+    scale_to_mm(soup_);
     return std::move(soup_);
   }
 
@@ -256,7 +265,8 @@ class Parser : detail::TomlChecks {
 
 }  // namespace
 
-ProfileSoup parse_profile_toml(std::string_view text, const std::filesystem::path& path) {
+ProfileSoup parse_profile_toml(std::string_view text, const std::filesystem::path& path,
+                               const std::optional<LengthUnit>& units) {
   toml::table root;
   try {
     root = toml::parse(text, path.string());
@@ -264,11 +274,12 @@ ProfileSoup parse_profile_toml(std::string_view text, const std::filesystem::pat
     throw ReadError(path, "line " + std::to_string(e.source().begin.line),
                     "TOML syntax: " + std::string(e.description()));
   }
-  return Parser(path).run(root);
+  return Parser(path).run(root, units);
 }
 
-ProfileSoup read_profile_toml(const std::filesystem::path& path) {
-  return parse_profile_toml(detail::read_file_bytes(path), path);
+ProfileSoup read_profile_toml(const std::filesystem::path& path,
+                              const std::optional<LengthUnit>& units) {
+  return parse_profile_toml(detail::read_file_bytes(path), path, units);
 }
 
 }  // namespace ncpath::io

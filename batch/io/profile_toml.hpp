@@ -16,8 +16,10 @@
 //   points = [[0, 0], [10, 0, 1.0], [10, 10]]   # [x, y] or [x, y, bulge]
 //   closed = true
 //
-// Millimetres. Errors are ReadError "<file>: line N: loop 0 segment 3: arc: <problem>".
+// Millimetres unless the file says otherwise: a top-level `units = "inch"` (any name of
+// length_units.hpp unit_by_name); the job's units override it. Errors are ReadError "<file>: line N: loop 0 segment 3: arc: <problem>".
 #include <filesystem>
+#include <optional>
 #include <string_view>
 
 #include "batch/io/profile_soup.hpp"
@@ -25,10 +27,13 @@
 
 namespace ncpath::io {
 
-// Reads the file; ReadError when it cannot be read or is not a valid profile file.
-ProfileSoup read_profile_toml(const std::filesystem::path& path);
+// Reads the file; ReadError when it cannot be read or is not a valid profile file. `units`:
+// the job's, which override the file's.
+ProfileSoup read_profile_toml(const std::filesystem::path& path,
+                              const std::optional<LengthUnit>& units = std::nullopt);
 
 // The same from text in memory; `path` only names the source in messages.
-ProfileSoup parse_profile_toml(std::string_view text, const std::filesystem::path& path);
+ProfileSoup parse_profile_toml(std::string_view text, const std::filesystem::path& path,
+                               const std::optional<LengthUnit>& units = std::nullopt);
 
 }  // namespace ncpath::io

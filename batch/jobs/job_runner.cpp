@@ -1,6 +1,7 @@
 #include "batch/jobs/job_runner.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <mutex>
@@ -17,6 +18,7 @@
 #include "batch/jobs/pencil_job.hpp"
 #include "batch/jobs/pocket3d_job.hpp"
 #include "batch/jobs/pocket_job.hpp"
+#include "batch/jobs/profile_input.hpp"
 #include "batch/jobs/points_csv.hpp"
 #include "batch/jobs/scan_job.hpp"
 #include "batch/jobs/shared_mesh.hpp"
@@ -181,9 +183,14 @@ JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out
   JobOutcome o;
   o.name = job.name;
   Stopwatch all;
+  // A failed job's message also carries what the reading had to guess (units read as mm may
+  // be why the tool does not fit).
   auto fail = [&](const char* status, const std::string& message) {
     o.status = status;
     o.message = message;
+    for (const StatValue& s : stats)
+      if (s.name == kInputWarningStat && std::holds_alternative<std::string>(s.value))
+        o.message += "; warning: " + std::get<std::string>(s.value);
   };
   if (!job.error.empty()) {
     fail(job.error_status.c_str(), job.error);
@@ -241,7 +248,13 @@ JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out
       }
       stats.push_back({"points_per_s", o.compute_s > 0 ? o.points / o.compute_s : 0.0, "1/s"});
       o.status = verify_failure.empty() ? "ok" : "failed_verification";
-      o.message = verify_failure.empty() ? open_chain_warning(stats) : verify_failure;
+      o.message = verify_failure.empty() ? ok_job_warning(stats) : verify_failure;
+      // A band of a split job may lie beside the part: join_bands judges the whole job.
+      const bool band = job.operation == Operation::kRaster && job.raster.bands > 1;
+      if (verify_failure.empty() && o.points == 0 && !band) {
+        const std::string none = nothing_to_cut_warning(job);
+        o.message = o.message.empty() ? none : none + "; " + o.message;
+      }
       if (verify_failure.empty() && !bound_warning.empty())
         o.message = o.message.empty() ? bound_warning : o.message + "; " + bound_warning;
     } catch (const io::ReadError& e) {
@@ -264,6 +277,40 @@ JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out
 }
 
 }  // namespace
+
+std::string nothing_to_cut_warning(const JobSpec& job) {
+  std::string why;
+  char diameter[32];
+  std::snprintf(diameter, sizeof diameter, "%g", 2 * job.tool.radius);
+  switch (job.operation) {
+    case Operation::kOffset:
+    case Operation::kPocket:
+    case Operation::kPocket3d:
+      why = std::string("the tool (diameter ") + diameter +
+            " mm, with its stock) fits in none of the profile's regions";
+      break;
+    case Operation::kPencil:
+    case Operation::kFillet:
+      why = "the part has no concave crease for this tool";
+      break;
+    case Operation::kZLevel:
+      why = "no level meets the part";
+      break;
+    default:
+      why = "no point of the job lies on the part";
+  }
+  return "warning: nothing to cut (0 points): " + why;
+}
+
+std::string ok_job_warning(const std::vector<out::StatValue>& stats) {
+  std::string out;
+  for (const out::StatValue& s : stats)
+    if (s.name == kInputWarningStat && std::holds_alternative<std::string>(s.value))
+      out = "warning: " + std::get<std::string>(s.value);
+  const std::string chains = open_chain_warning(stats);
+  if (!chains.empty()) out = out.empty() ? chains : out + "; " + chains;
+  return out;
+}
 
 std::string open_chain_warning(const std::vector<out::StatValue>& stats) {
   for (const out::StatValue& s : stats)

@@ -37,6 +37,15 @@ struct BatchObserver {
 // from the output or give no pencil candidates.
 std::string open_chain_warning(const std::vector<out::StatValue>& stats);
 
+// The warning of an ok job that wrote no point: "warning: nothing to cut (0 points): " and
+// why, for the job's operation (a profile: the tool fits in none of its regions).
+std::string nothing_to_cut_warning(const JobSpec& job);
+
+// Every warning an ok job carries, "; "-separated ("" when none): the input's
+// (profile_input.hpp kInputWarningStat: units the reader had to guess), then
+// open_chain_warning's.
+std::string ok_job_warning(const std::vector<out::StatValue>& stats);
+
 // Throws std::runtime_error only when the output file itself cannot be written.
 std::vector<JobOutcome> run_batch(const BatchSpec& batch, const BatchObserver& observer);
 

@@ -22,6 +22,12 @@
 
 namespace ncpath::jobs {
 
+std::string parse_units(const std::string& text, std::optional<io::LengthUnit>& out) {
+  out = io::unit_by_name(text);
+  if (out) return "";
+  return "must be one of " + io::unit_names() + ", got \"" + text + "\"";
+}
+
 std::string parse_verify_mode(const std::string& text, VerifyMode& out) {
   if (text == "off")
     out = VerifyMode::kOff;
@@ -142,6 +148,14 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
   else
     k.fail("input", profile_op ? "is required (a profile: DXF or TOML)"
                                : "is required (a mesh file: STL or OFF)");
+  std::string units;
+  if (k.string("units", units)) {
+    if (!profile_op)
+      k.fail("units", "applies to profile drawings (offset, pocket, pocket3d); scale a mesh "
+                      "with transform.scale");
+    else if (std::string e = parse_units(units, job.units); !e.empty())
+      k.fail("units", e);
+  }
   if (job.operation == Operation::kPocket3d) {
     std::string surface;
     if (k.string("surface", surface))

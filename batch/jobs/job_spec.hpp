@@ -16,6 +16,8 @@
 //                                 # "offset", "pocket" or "pocket3d"
 //   input     = "../datasets/cache/meshes/bunny00.off"
 //   surface   = "bottom.toml"     # pocket3d only: the bottom surface
+//   units     = "inch"            # offset, pocket, pocket3d: the drawing's units (default:
+//                                 # what the drawing declares, else mm with a warning)
 //   tool      = "ball:5"          # ball:D, flat:D, bull:D:r (diameter, corner radius)
 //   transform = { fit_xy = 200, scale = 1, translate = [0, 0, 0] }
 //   params    = { interval = 0.5, step = 0.1 }     # see docs/cli.md for every key
@@ -32,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "batch/io/length_units.hpp"
 #include "batch/output/gcode_writer.hpp"
 #include "engine/fillet.hpp"
 #include "engine/pencil.hpp"
@@ -118,6 +121,9 @@ struct JobSpec {
   std::filesystem::path input;    // mesh: STL or OFF
   std::filesystem::path points;   // drop: CSV of "x,y" lines (blank line = new path)
   std::filesystem::path surface;  // pocket3d: the bottom surface (TOML, docs/profile-format.md)
+  // Profile jobs: the drawing's units (key `units`, --units), overriding what the drawing
+  // declares; nullopt: the drawing's (batch/io/dxf_reader.hpp).
+  std::optional<io::LengthUnit> units;
   MeshTransform transform;
   std::string tool_text;  // as the user wrote it, e.g. "ball:5"
   Cutter tool;
@@ -154,6 +160,9 @@ struct BatchSpec {
   std::vector<JobSpec> jobs;
   int mpi_rank = -1;  // >= 0 (ncpath-mpi): every job's statistic `mpi_rank`, where it ran
 };
+
+// "inch" -> out (io::unit_by_name). Returns an error message to follow the key's name, or "".
+std::string parse_units(const std::string& text, std::optional<io::LengthUnit>& out);
 
 // "ball:5" -> ball_cutter(5). Returns an error message naming the problem, or "".
 std::string parse_tool(const std::string& text, Cutter& out);

@@ -91,6 +91,9 @@ std::string params_json(const JobSpec& job) {
   } else {
     j["points"] = job.points.string();
   }
+  if (job.operation == Operation::kOffset || job.operation == Operation::kPocket ||
+      job.operation == Operation::kPocket3d)
+    j["units"] = job.units ? nlohmann::ordered_json(job.units->name) : nlohmann::ordered_json("drawing");
   return j.dump();
 }
 

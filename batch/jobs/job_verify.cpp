@@ -257,7 +257,7 @@ std::unique_ptr<JobVerifier> profile_verifier(const JobSpec& job) {
     return pocket3d_verifier(job);
   }
   p.rapid_limit = p.top;
-  const ProfileInput in = read_profile_regions(job.input, join, ignored);
+  const ProfileInput in = read_profile_regions(job.input, join, job.units, ignored);
   return std::make_unique<ProfileJobVerifier>(job, p, in);
 }
 
@@ -269,7 +269,7 @@ std::unique_ptr<JobVerifier> pocket3d_verifier(const JobSpec& job) {
   p.stock = q.stock;
   p.top = 0;
   p.rapid_limit = p.top;
-  const ProfileInput in = read_profile_regions(job.input, q.join_tolerance, ignored);
+  const ProfileInput in = read_profile_regions(job.input, q.join_tolerance, job.units, ignored);
   bool nurbs = false;
   for (const Region& r : in.regions) {
     nurbs = nurbs || !r.boundary.nurbs.empty();
@@ -334,6 +334,10 @@ JobSpec stored_job_spec(const std::string& operation, const std::string& input_p
     number("delta", job.pocket3d.delta);
     number("tolerance", job.pocket3d.tolerance);
     if (p.contains("surface")) job.surface = p["surface"].get<std::string>();
+    // The units the job gave ("drawing": none, the drawing's own are read again).
+    if (p.contains("units") && p["units"].is_string() && p["units"] != "drawing")
+      if (std::string e = parse_units(p["units"].get<std::string>(), job.units); !e.empty())
+        throw std::invalid_argument("the job's params attribute has units " + e);
     number("stock", job.pencil.stock);
     number("stock", job.fillet.stock);
   } catch (const nlohmann::json::exception& e) {

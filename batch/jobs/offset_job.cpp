@@ -17,7 +17,7 @@ std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 OffsetJobSummary run_offset_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats) {
   OffsetJobSummary summary;
-  const ProfileInput in = read_profile_regions(job.input, job.offset.join_tolerance, stats);
+  const ProfileInput in = read_profile_regions(job.input, job.offset.join_tolerance, job.units, stats);
 
   // Loop paths are polylines within the tolerance; when G-code is written they are finer
   // than its arc tolerance, so that the G-code writer can fit the arcs back. The loops lie

@@ -73,7 +73,7 @@ void push_pocket3d_stats(const Pocket3dStats& st, std::vector<out::StatValue>& s
 Pocket3dJobSummary run_pocket3d_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                     std::vector<out::StatValue>& stats) {
   Pocket3dJobSummary summary;
-  const ProfileInput in = read_profile_regions(job.input, job.pocket3d.join_tolerance, stats);
+  const ProfileInput in = read_profile_regions(job.input, job.pocket3d.join_tolerance, job.units, stats);
   Stopwatch surface_clock;
   const NurbsSurface bottom = io::read_surface_toml(job.surface);
   stats.push_back({"surface_sha256", out::sha256_file(job.surface), ""});

@@ -93,7 +93,7 @@ double pocket_safe_z(const JobSpec& job, const out::GcodeWriter* gcode, double t
 PocketJobSummary run_pocket_job(const JobSpec& job, out::ClJob& cl, out::GcodeWriter* gcode,
                                 std::vector<out::StatValue>& stats) {
   PocketJobSummary summary;
-  const ProfileInput in = read_profile_regions(job.input, job.pocket.join_tolerance, stats);
+  const ProfileInput in = read_profile_regions(job.input, job.pocket.join_tolerance, job.units, stats);
 
   const PocketPathParams p = path_params(job, gcode);
   Stopwatch compute_clock;

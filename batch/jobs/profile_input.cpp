@@ -15,12 +15,13 @@ namespace {
 
 std::int64_t i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
-io::ProfileSoup read_soup(const std::filesystem::path& path) {
+io::ProfileSoup read_soup(const std::filesystem::path& path,
+                          const std::optional<io::LengthUnit>& units) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".dxf") return io::read_dxf(path);
-  if (ext == ".toml") return io::read_profile_toml(path);
+  if (ext == ".dxf") return io::read_dxf(path, units);
+  if (ext == ".toml") return io::read_profile_toml(path, units);
   throw io::ReadError(
       path, "",
       "unknown profile format '" + ext + "' (expected .dxf or .toml, see docs/profile-format.md)");
@@ -29,11 +30,17 @@ io::ProfileSoup read_soup(const std::filesystem::path& path) {
 }  // namespace
 
 ProfileInput read_profile_regions(const std::filesystem::path& path, double join_tolerance,
+                                  const std::optional<io::LengthUnit>& units,
                                   std::vector<out::StatValue>& stats) {
   Stopwatch read_clock;
-  io::ProfileSoup soup = read_soup(path);
+  io::ProfileSoup soup = read_soup(path, units);
   ChainResult chained = chain_and_nest(soup.curves, soup.nurbs, soup.sources, join_tolerance);
   if (!chained.error.empty()) throw io::ReadError(path, "", chained.error);
+  stats.push_back({"units", soup.units.name, ""});
+  stats.push_back({"units_from", soup.units_from, ""});
+  stats.push_back({"mm_per_unit", soup.units.mm_per_unit, "mm"});
+  if (!soup.units_warning.empty())
+    stats.push_back({std::string(kInputWarningStat), soup.units_warning, ""});
   stats.push_back({"profile_curves", i64(soup.curves.size()), ""});
   stats.push_back({"zero_length_dropped", i64(soup.zero_length_dropped), ""});
   stats.push_back({"warnings", i64(soup.warnings.size()), ""});

@@ -3,10 +3,12 @@
 // or TOML), chain and nest it into regions, and record the input statistics. One function, so both
 // operations accept the same files and report the same problems.
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "batch/io/length_units.hpp"
 #include "batch/output/cl_writer.hpp"
 #include "engine/pocket_path.hpp"  // RegionTooSmall
 #include "kernels/pocket/profile.hpp"
@@ -18,12 +20,18 @@ struct ProfileInput {
   std::vector<SourceEntity> sources;  // the regions' Seg2::source indexes this table
 };
 
-// Reads `path` (.dxf or .toml, by extension) and chains it with `join_tolerance` (mm).
-// Appends profile_curves, zero_length_dropped, warnings, largest_gap_closed (mm), regions and
+// The statistic (a string) an ok job's message repeats: what the reading had to guess.
+inline constexpr const char* kInputWarningStat = "input_warning";
+
+// Reads `path` (.dxf or .toml, by extension) in the job's `units` (nullopt: the drawing's, see
+// io::read_dxf) and chains it with `join_tolerance` (mm). Appends units (its name, e.g.
+// "inch"), units_from (job, $INSUNITS, $MEASUREMENT, file or default), mm_per_unit,
+// input_warning (when the units were a guess), profile_curves, zero_length_dropped, warnings, largest_gap_closed (mm), regions and
 // read_s (s) to stats. Throws io::ReadError for unreadable or malformed profiles and for
 // profiles that do not chain into closed, non-crossing loops (the message names the entity
 // and the point).
 ProfileInput read_profile_regions(const std::filesystem::path& path, double join_tolerance,
+                                  const std::optional<io::LengthUnit>& units,
                                   std::vector<out::StatValue>& stats);
 
 // The input entities that drew the boundary of regions[region], for messages: "LWPOLYLINE 2F",

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <variant>
 
+#include "batch/jobs/job_runner.hpp"
 #include "batch/jobs/job_verify.hpp"
 #include "batch/output/cl_reader.hpp"
 #include "engine/run_control.hpp"
@@ -278,6 +279,10 @@ JobOutcome join_bands(out::ClFile& file, const JobSpec& job, const std::vector<B
   o.status = failure.empty() ? "ok" : "failed_verification";
   for (const Band& b : bands)
     if (o.message.empty()) o.message = b.outcome.message;
+  if (failure.empty() && o.points == 0) {
+    const std::string none = nothing_to_cut_warning(job);
+    o.message = o.message.empty() ? none : none + "; " + o.message;
+  }
   if (!failure.empty()) o.message = failure;
   cl.set_status(o.status, o.message);
   cl.write_stats(merged);

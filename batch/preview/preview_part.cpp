@@ -73,7 +73,7 @@ Part load_part(const jobs::JobSpec& job) {
     if (profile_job(job)) {
       std::vector<out::StatValue> ignored;
       const jobs::ProfileInput in =
-          jobs::read_profile_regions(job.input, join_tolerance(job), ignored);
+          jobs::read_profile_regions(job.input, join_tolerance(job), job.units, ignored);
       for (const Region& r : in.regions) {
         p.loops.push_back(sample(r.boundary));
         for (const Profile& island : r.islands) p.loops.push_back(sample(island));

@@ -201,6 +201,105 @@ TEST(PocketCli, ATooBigToolNamesTheBoundarysEntity) {
   EXPECT_NE(r.output.find("CIRCLE 2F"), std::string::npos) << r.output;
 }
 
+// A string statistic of a job ("" when absent).
+std::string string_stat(hid_t f, const std::string& job, const std::string& name) {
+  const std::string path = "/jobs/" + job + "/stats/" + name;
+  if (H5Lexists(f, path.c_str(), H5P_DEFAULT) <= 0) return "";
+  h5::Id ds(H5Dopen2(f, path.c_str(), H5P_DEFAULT), "open " + path);
+  std::string v = h5::value_bytes(ds, false);
+  return v.empty() ? v : v.substr(0, v.size() - 1);  // one string, '\0'-terminated
+}
+
+// A 4 x 2 rectangle, in the units of its $INSUNITS (code "" for none).
+std::string rectangle_dxf(const std::string& insunits) {
+  std::string header = test::pairs({"0", "SECTION", "2", "HEADER", "9", "$ACADVER", "1", "AC1015"});
+  if (!insunits.empty()) header += test::pairs({"9", "$INSUNITS", "70", insunits});
+  return header + test::pairs({"0", "ENDSEC"}) +
+         test::dxf_entities(test::pairs({"0", "LWPOLYLINE", "5", "2A", "8", "0", "90", "4", "70",
+                                         "1", "10", "0", "20", "0", "10", "4", "20", "0", "10",
+                                         "4", "20", "2", "10", "0", "20", "2"}));
+}
+
+// The issue's inch drawing: 101.6 x 50.8 mm, pocketed with a 6 mm tool inside it; the units
+// are recorded; a drawing without units is pocketed as mm with a warning in the job's message;
+// --units overrides the drawing.
+TEST(PocketCli, DrawingUnitsScaleThePartAndAreRecorded) {
+  const auto dir = fixture_dir();
+  auto run = [&](const std::string& file, const std::string& insunits, const std::string& extra,
+                 int exit_code = 0) {
+    std::ofstream(dir / file, std::ios::binary) << rectangle_dxf(insunits);
+    const CmdResult r = ncpath("pocket --profile " + (dir / file).string() +
+                               " --depth 2 --quiet --out " + (dir / (file + ".h5")).string() +
+                               extra);
+    EXPECT_EQ(r.exit_code, exit_code) << r.output;
+    return h5::open_read(dir / (file + ".h5"));
+  };
+  auto x_extent = [](hid_t f) {
+    const auto pts = h5::read_all<double>(f, "/jobs/pocket/cl/points", H5T_NATIVE_DOUBLE);
+    double lo = 1e300, hi = -1e300;
+    for (std::size_t i = 0; i + 2 < pts.size(); i += 3)
+      if (pts[i + 2] < 0) lo = std::min(lo, pts[i]), hi = std::max(hi, pts[i]);
+    return std::make_pair(lo, hi);
+  };
+  {
+    h5::Id f = run("inch.dxf", "1", " --tool flat:6");
+    h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(job, "message"), "");
+    EXPECT_EQ(string_stat(f, "pocket", "units"), "inch");
+    EXPECT_EQ(string_stat(f, "pocket", "units_from"), "$INSUNITS");
+    EXPECT_EQ(stat(f, "pocket", "mm_per_unit"), 25.4);
+    // The tool's centre stays 3 mm inside the walls and reaches them (to the tolerance).
+    const auto [lo, hi] = x_extent(f);
+    EXPECT_NEAR(lo, 3, 0.02);
+    EXPECT_NEAR(hi, 101.6 - 3, 0.02);
+  }
+  {
+    // As mm the 6 mm tool does not fit: the failure names the guess too.
+    h5::Id f = run("none.dxf", "", " --tool flat:6", 1);
+    h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter");
+    EXPECT_NE(h5::attr_str(job, "message").find("does not fit"), std::string::npos);
+    EXPECT_NE(h5::attr_str(job, "message").find("; warning: the drawing declares no units"),
+              std::string::npos);
+  }
+  {
+    h5::Id f = run("none.dxf", "", " --tool flat:1");
+    h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
+    EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+    EXPECT_NE(h5::attr_str(job, "message").find("warning: the drawing declares no units"),
+              std::string::npos);
+    EXPECT_EQ(string_stat(f, "pocket", "units_from"), "default");
+    EXPECT_NE(string_stat(f, "pocket", "input_warning"), "");
+  }
+  {
+    h5::Id f = run("override.dxf", "1", " --tool flat:6 --units cm");
+    EXPECT_EQ(string_stat(f, "pocket", "units_from"), "job");
+    EXPECT_NEAR(x_extent(f).second, 40 - 3, 0.02);
+    h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
+    EXPECT_NE(h5::attr_str(job, "params").find("\"units\":\"cm\""), std::string::npos);
+  }
+  expect_invalid_parameter(dir,
+                           "pocket --profile " + (dir / "inch.dxf").string() +
+                               " --tool flat:6 --depth 2 --units furlong",
+                           "--units must be one of mm, cm");
+}
+
+// The issue's small loop: a 1.2 mm circle and a 2 mm tool give no offset loop; the job is ok
+// (nothing is wrong with the input) but says that nothing was cut.
+TEST(PocketCli, AnOffsetJobWithNothingToCutSaysSo) {
+  const auto dir = fixture_dir();
+  std::ofstream(dir / "small.toml") << "[[circle]]\ncenter = [0, 0]\nradius = 0.6\n";
+  const CmdResult r = ncpath("offset --profile " + (dir / "small.toml").string() +
+                             " --tool flat:2 --stepover 1 --quiet --out " +
+                             (dir / "small.h5").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("nothing to cut"), std::string::npos) << r.output;
+  h5::Id f = h5::open_read(dir / "small.h5");
+  h5::Id job(H5Gopen2(f, "/jobs/offset", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+  EXPECT_EQ(h5::attr_str(job, "message").rfind("warning: nothing to cut (0 points)", 0), 0u);
+}
+
 TEST(PocketCli, BatchJobsReportUnknownKeysAndRunTheOthers) {
   const auto dir = fixture_dir();
   std::ofstream(dir / "jobs.toml") << R"(
@@ -245,7 +344,7 @@ TEST(PocketCli, HelpDocumentsEveryOption) {
         "--out",     "--gcode",   "--stock",        "--tolerance",  "--join-tolerance",
         "--order",   "--milling", "--helix-radius", "--ramp-angle", "--clearance",
         "--safe-z",  "--threads", "--dialect",      "--feed",       "--plunge-feed",
-        "--spindle", "--name",    "--quiet"})
+        "--spindle", "--name",    "--quiet",        "--units"})
     EXPECT_NE(r.output.find(s), std::string::npos) << s;
   EXPECT_NE(ncpath("--help").output.find("pocket"), std::string::npos);
 }

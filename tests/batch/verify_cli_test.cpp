@@ -83,6 +83,25 @@ TEST(VerifyCli, GlyphAndBracketPocketsAreVerifiedClean) {
   }
 }
 
+// A job whose units override the drawing's (the bracket, declared in mm, read as cm: ten
+// times larger): `ncpath verify` reads the drawing again in the job's units, from the params
+// it stored, and passes it; in the drawing's own mm the 10x paths would cut through its walls.
+TEST(VerifyCli, VerifyCommandReadsTheDrawingInTheJobsUnits) {
+  const auto dir = h5::out_dir("verify_cli_units");
+  const auto out = dir / "cm.h5";
+  const CmdResult r = ncpath("pocket --profile " + dataset("bracket.dxf").string() +
+                             " --units cm --tool flat:6 --depth 2 --quiet --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  {
+    h5::Id f = h5::open_read(out);
+    EXPECT_EQ(stat(f, "pocket", "mm_per_unit"), 10);
+    EXPECT_EQ(stat(f, "pocket", "verify_max_gouge"), 0);
+  }
+  const CmdResult v = ncpath("verify --in " + out.string());
+  EXPECT_EQ(v.exit_code, 0) << v.output;
+  EXPECT_NE(v.output.find(": ok"), std::string::npos) << v.output;
+}
+
 TEST(VerifyCli, VerifyOffWritesNoVerifierStatistics) {
   const auto dir = h5::out_dir("verify_cli_off");
   const auto out = dir / "off.h5";

@@ -5,6 +5,8 @@
 // LINE, ARC (some with extrusion -Z), CIRCLE and SPLINE entities in shuffled order, some
 // reversed, numbers with 17 significant digits, which batch/io/dxf_reader.* reads back to the
 // same geometry (ARC end points to ~1e-15 relative, everything else bitwise).
+// With units (DxfUnits: an $INSUNITS code and its size in mm, stated by the caller) every
+// coordinate is written in those units, so that the reader's mm are the regions' again.
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -123,13 +125,39 @@ inline bool is_two_arc_circle(const Profile& p) {
          s.c == t.c && std::abs(s.r - t.r) <= 1e-12 * s.r;
 }
 
+// The regions with every coordinate and radius multiplied by k.
+inline std::vector<Region> scaled_regions(std::vector<Region> regions, double k) {
+  auto scale = [k](Profile& p) {
+    for (ProfileCurve& c : p.curves) {
+      c.seg.a *= k, c.seg.b *= k, c.seg.c *= k;
+      c.seg.r *= k;
+    }
+    for (Nurbs2& n : p.nurbs)
+      for (Vec2& q : n.ctrl) q *= k;
+  };
+  for (Region& r : regions) {
+    scale(r.boundary);
+    for (Profile& isl : r.islands) scale(isl);
+  }
+  return regions;
+}
+
 }  // namespace random_pocket_detail
+
+// The drawing's units as its HEADER declares them: $INSUNITS code and the unit in mm.
+struct DxfUnits {
+  int insunits = 4;  // mm
+  double mm_per_unit = 1;
+};
 
 // The regions as an ASCII DXF entity soup (see the top of this file); shuffle_seed decides
 // the entity order, which entities are reversed, which arcs use extrusion -Z and whether
 // two-arc circles become CIRCLE entities.
-inline std::string region_to_dxf(const std::vector<Region>& regions, std::uint64_t shuffle_seed) {
+inline std::string region_to_dxf(const std::vector<Region>& mm_regions,
+                                 std::uint64_t shuffle_seed, const DxfUnits& units = {}) {
   namespace d = random_pocket_detail;
+  const std::vector<Region> regions =
+      units.mm_per_unit == 1 ? mm_regions : d::scaled_regions(mm_regions, 1 / units.mm_per_unit);
   d::Rng rng(shuffle_seed);
   std::vector<d::DxfEntity> ents;
   auto add_profile = [&](const Profile& p) {
@@ -160,7 +188,7 @@ inline std::string region_to_dxf(const std::vector<Region>& regions, std::uint64
   d::dxf_pair(out, 9, "$ACADVER");
   d::dxf_pair(out, 1, "AC1015");
   d::dxf_pair(out, 9, "$INSUNITS");
-  d::dxf_pair(out, 70, "4");
+  d::dxf_pair(out, 70, std::to_string(units.insunits));
   d::dxf_pair(out, 0, "ENDSEC");
   d::dxf_pair(out, 0, "SECTION");
   d::dxf_pair(out, 2, "ENTITIES");

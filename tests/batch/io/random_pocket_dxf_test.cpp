@@ -270,10 +270,13 @@ std::string relative_mismatch(const std::string& what, double a, double b) {
 // Reads the DXF text back and compares it with the region ("" when the same): one region,
 // same island and curve counts, same length and signed area per loop within kRoundTripRel.
 std::string round_trip_problems(const Region& r, const std::string& dxf,
-                                const io::testing::TempDir& dir, const std::string& name) {
+                                const io::testing::TempDir& dir, const std::string& name,
+                                const std::string& units = "mm") {
   io::ProfileSoup soup;
   try {
     soup = io::read_dxf(dir.write(name, dxf));
+    if (soup.units.name != units || soup.units_from != io::kUnitsFromInsunits)
+      return "read in " + soup.units.name + " from " + soup.units_from + ", not " + units + "\n";
   } catch (const io::ReadError& e) {
     return std::string("read_dxf: ") + e.what() + "\n";
   }
@@ -331,6 +334,29 @@ TEST(RandomPocket, TwoHundredSeedsSurviveTheDxfRoundTrip) {
     const std::vector<Region> regions = random_pocket(seed);
     const std::string dxf = region_to_dxf(regions, shuffle_seed_of(seed));
     EXPECT_EQ(round_trip_problems(regions[0], dxf, dir, "seed.dxf"), "") << "seed " << seed;
+  }
+}
+
+// The same pockets drawn in other units ($INSUNITS) read back as the same mm: the reader
+// multiplies by the unit's size, here from the DXF reference's table as written below (not
+// the reader's table).
+TEST(RandomPocket, SeedsDrawnInOtherUnitsReadBackInMm) {
+  struct Unit {
+    const char* name;
+    DxfUnits dxf;
+  };
+  const Unit units[] = {{"inch", {1, 25.4}},      {"foot", {2, 12 * 25.4}},
+                        {"cm", {5, 10}},           {"m", {6, 1000}},
+                        {"mil", {9, 0.0254}},      {"yard", {10, 36 * 25.4}},
+                        {"micron", {13, 1e-3}},    {"dm", {14, 100}},
+                        {"us_survey_foot", {21, 1200.0 / 3937 * 1000}}};
+  const io::testing::TempDir dir;
+  for (std::uint64_t seed = 0; seed < kSeeds; ++seed) {
+    const Unit& u = units[seed % std::size(units)];
+    const std::vector<Region> regions = random_pocket(seed);
+    const std::string dxf = region_to_dxf(regions, shuffle_seed_of(seed), u.dxf);
+    EXPECT_EQ(round_trip_problems(regions[0], dxf, dir, "seed.dxf", u.name), "")
+        << "seed " << seed << " in " << u.name;
   }
 }
 

@@ -41,6 +41,28 @@ TEST(PocketSpec, ParsesEveryKey) {
     EXPECT_NE(json.find(s), std::string::npos) << s << " in " << json;
 }
 
+// The job-level `units` key: a unit name for profile jobs (echoed in the params), refused
+// with the accepted names when unknown, and refused on mesh jobs (whose files have no units).
+TEST(PocketSpec, UnitsKey) {
+  const JobSpec inch = pocket_job("params = { depth = 2 }", "units = \"in\"");
+  ASSERT_EQ(inch.error, "");
+  ASSERT_TRUE(inch.units);
+  EXPECT_EQ(inch.units->name, "inch");
+  EXPECT_EQ(inch.units->mm_per_unit, 25.4);
+  EXPECT_NE(params_json(inch).find("\"units\":\"inch\""), std::string::npos);
+  const JobSpec drawing = pocket_job("params = { depth = 2 }");
+  EXPECT_FALSE(drawing.units);
+  EXPECT_NE(params_json(drawing).find("\"units\":\"drawing\""), std::string::npos);
+  const JobSpec bad = pocket_job("params = { depth = 2 }", "units = \"furlong\"");
+  EXPECT_NE(bad.error.find("units"), std::string::npos) << bad.error;
+  EXPECT_NE(bad.error.find("must be one of mm, cm"), std::string::npos) << bad.error;
+  const BatchSpec mesh = parse_batch_text(
+      "[[job]]\noperation = \"raster\"\ninput = \"m.stl\"\ntool = \"ball:6\"\nunits = \"inch\"\n",
+      "/base", "jobs.toml");
+  EXPECT_NE(mesh.jobs.at(0).error.find("applies to profile drawings"), std::string::npos)
+      << mesh.jobs.at(0).error;
+}
+
 TEST(PocketSpec, DefaultsAreHalfTheDiameterOnePassAndClimbOutward) {
   const JobSpec j = pocket_job("params = { depth = 3 }");
   ASSERT_EQ(j.error, "");
