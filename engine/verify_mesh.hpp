@@ -150,13 +150,30 @@ class MeshVerifier {
 // structures are freed, so the two never take memory at once.
 using SweptIndexSource = std::function<std::shared_ptr<const MeshVerifier>()>;
 
+// Checks of a chunk's moves already made by this verifier's kernel (MeshVerifier::check_moves,
+// kMeasure) with the verifier's tool and gouge floor and no clearance: the chord guard's
+// (engine/chord_guard.hpp), which checks every move of a raster before it lifts the ones
+// that gouge. One entry per move of the chunk, in verify_moves' numbering; known[m] = 0 where
+// move m was not checked so (a move a lift-over made, a rapid: rapids need their clearance).
+// A check is used only for the move it was made for: from[m] and to[m] must equal the
+// chunk's move m bit for bit, else the move is checked again.
+struct PrecheckedMoves {
+  std::vector<MeshVerifier::MoveCheck> checks;
+  std::vector<std::uint8_t> known;
+  std::vector<Vec3> from, to;
+};
+
 // Verifies every move of the chunk: moves of kCut and kLinkAtDepth paths for gouges, moves of
 // kRapid paths for gouges and clearance. Moves are numbered from first_move_index in chunk
 // order (a path of n points has n - 1 moves), paths from first_path_index. A chunk whose
 // sizes disagree (xyz, path_sizes, path_kinds) or that holds a non-finite point gets an
-// error message and no verdict for the moves concerned.
+// error message and no verdict for the moves concerned. `prechecked` (its size must be the
+// chunk's move count, else it is not used): the known moves are taken from it instead of
+// being checked again (the same kernel, tool and floor give the same check, bit for bit, but
+// for the candidates counted); the others are checked here. The report is the same.
 MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter, const ClChunk& cl,
                               const MeshVerifyParams& params, std::uint64_t first_move_index = 0,
-                              std::uint32_t first_path_index = 0);
+                              std::uint32_t first_path_index = 0,
+                              const PrecheckedMoves* prechecked = nullptr);
 
 }  // namespace ncpath

@@ -103,11 +103,35 @@ void tally(MeshVerifyReport& out, MoveViolation v, const MeshVerifier::MoveCheck
   if (clearance < safe_clearance) ++out.unsafe_rapids;
 }
 
+// The checks of one run of a path's moves (tips[r] -> tips[r + 1]): those `pre` knows (from
+// move m0 on) are taken from it, the others checked, in groups of consecutive moves.
+void check_run(const MeshVerifier& verifier, const SweptTool& tool, const std::vector<Vec3>& tips,
+               double floor, double cap, const PrecheckedMoves* pre, std::uint64_t m0,
+               std::vector<MeshVerifier::MoveCheck>& checks) {
+  const std::size_t n = tips.size() - 1;
+  checks.resize(n);
+  if (!pre) return verifier.check_path(tool, tips.data(), tips.size(), floor, cap, checks.data());
+  auto known = [&](std::size_t r) {
+    return pre->known[m0 + r] && pre->from[m0 + r] == tips[r] && pre->to[m0 + r] == tips[r + 1];
+  };
+  for (std::size_t r = 0; r < n;) {
+    if (known(r)) {
+      checks[r] = pre->checks[m0 + r];
+      ++r;
+      continue;
+    }
+    std::size_t e = r + 1;
+    while (e < n && !known(e)) ++e;
+    verifier.check_path(tool, tips.data() + r, e - r + 1, floor, cap, checks.data() + r);
+    r = e;
+  }
+}
+
 }  // namespace
 
 MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter, const ClChunk& cl,
                               const MeshVerifyParams& params, std::uint64_t first_move_index,
-                              std::uint32_t first_path_index) {
+                              std::uint32_t first_path_index, const PrecheckedMoves* prechecked) {
   MeshVerifyReport report;
   report.worst_capacity = static_cast<std::size_t>(std::max(0, params.worst));
   const MoveIndex index = index_moves(cl);
@@ -117,6 +141,12 @@ MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter
 
   constexpr std::uint64_t kBlock = 256;  // moves per task and per partial report
   const std::uint64_t moves = index.move_start.back();
+  const PrecheckedMoves* pre = prechecked && prechecked->checks.size() == moves &&
+                                       prechecked->known.size() == moves &&
+                                       prechecked->from.size() == moves &&
+                                       prechecked->to.size() == moves
+                                   ? prechecked
+                                   : nullptr;
   const std::size_t blocks = static_cast<std::size_t>((moves + kBlock - 1) / kBlock);
   std::vector<MeshVerifyReport> part(blocks);
   par::for_each(blocks, 1, [&](std::size_t bi) {
@@ -135,9 +165,8 @@ MeshVerifyReport verify_moves(const MeshVerifier& verifier, const Cutter& cutter
       tips.clear();
       for (std::uint64_t j = i; j <= i + (m_end - m); ++j) tips.push_back(point_at(cl, j));
       const bool rapid = cl.path_kinds[k] == static_cast<std::uint8_t>(PathKind::kRapid);
-      checks.resize(tips.size() - 1);
-      verifier.check_path(tool, tips.data(), tips.size(), std::max(0.0, params.gouge_tolerance),
-                          rapid ? cap : 0, checks.data());
+      check_run(verifier, tool, tips, std::max(0.0, params.gouge_tolerance), rapid ? cap : 0,
+                rapid ? nullptr : pre, m, checks);
       for (std::size_t r = 0; r < checks.size(); ++r, ++m) {
         MoveViolation v;
         v.move = first_move_index + m;

@@ -126,8 +126,13 @@ void run_mesh_job(const JobSpec& job, const MeshUse& use, out::ClJob& cl,
   std::optional<ChordGuard> guard;
   if (job.operation == Operation::kRaster)
     guard.emplace(timed_swept_index(shared, stats), job.tool);
+  // The guard checks every move with the verifier's kernel, tool (the job's, no stock) and
+  // floor: in full mode the verifier takes those checks instead of making them again.
+  const bool share_checks = guard && verifier && job.verify == VerifyMode::kFull;
   auto sink = [&](const ClChunk& raw) {
-    const ClChunk guarded = guard ? guard->apply(raw) : ClChunk{};
+    PrecheckedMoves checked;
+    const ClChunk guarded = guard ? guard->apply(raw, share_checks ? &checked : nullptr) : ClChunk{};
+    if (share_checks) verifier->use_prechecked(std::move(checked));
     const ClChunk& c = guard ? guarded : raw;
     cl.append_paths(c.xyz, c.contact, c.path_sizes, c.path_kinds);
     if (gcode) gcode->append(c);

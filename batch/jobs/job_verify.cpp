@@ -132,7 +132,8 @@ class MeshJobVerifier : public JobVerifier {
       index_ = source_();
       index_s_ = clock.seconds();
     }
-    const MeshVerifyReport m = verify_moves(*index_, tool_, cl, params_, first_move, first_path);
+    const MeshVerifyReport m =
+        verify_moves(*index_, tool_, cl, params_, first_move, first_path, prechecked());
     if (!m.error.empty()) throw std::runtime_error("verifier: " + m.error);
     VerifyReport r;
     r.moves = m.moves;
@@ -185,6 +186,7 @@ void JobVerifier::feed(const ClChunk& cl) {
     r = check(cl, moves_seen_, paths_seen_);
   }
   report_.merge(r);
+  prechecked_ = {};
   moves_seen_ += move_count(cl);
   paths_seen_ += static_cast<std::uint32_t>(cl.path_sizes.size());
   seconds_ += clock.seconds();
@@ -351,6 +353,8 @@ JobSpec stored_job_spec(const std::string& operation, const std::string& input_p
 void push_guard_stats(const ChordGuard& guard, std::vector<out::StatValue>& stats) {
   const ChordGuardStats& g = guard.stats();
   stats.push_back({"chord_guard_moves", static_cast<std::int64_t>(g.moves), ""});
+  stats.push_back({"chord_guard_raised", static_cast<std::int64_t>(g.raised), ""});
+  stats.push_back({"chord_guard_max_raise", g.max_raise, "mm"});
   stats.push_back({"chord_guard_lifted", static_cast<std::int64_t>(g.lifted), ""});
   stats.push_back({"chord_guard_points_added", static_cast<std::int64_t>(g.points_added), ""});
   stats.push_back({"chord_guard_max_lift", g.max_lift, "mm"});

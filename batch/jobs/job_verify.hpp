@@ -28,6 +28,11 @@ class JobVerifier {
   void attach(out::ClJob& cl);
   // Checks the next run of paths (what attach() does with each append).
   void feed(const ClChunk& cl);
+  // The next run of paths comes with checks of its moves made by this verifier's kernel,
+  // tool and floor (the raster's chord guard: engine/chord_guard.hpp): in full mode a mesh
+  // verifier takes the known ones instead of checking them again (verify_moves). Used by the
+  // next feed only; ignored by the other verifiers and in sample mode.
+  void use_prechecked(PrecheckedMoves checked) { prechecked_ = std::move(checked); }
   // Appends the statistics (verify_*) and returns the report. The checks ran inside the
   // job's appends: their time is taken out of the job's write_s, if it has one already.
   const VerifyReport& finish(std::vector<out::StatValue>& stats);
@@ -49,11 +54,16 @@ class JobVerifier {
   virtual void bound_stats(std::vector<out::StatValue>&) {}
   // Of the time check() took, what went into building the verifier's index (not verify_s).
   virtual double index_seconds() const { return 0; }
+  // The checks given for the run of paths check() is called with (full mode), or null.
+  const PrecheckedMoves* prechecked() const {
+    return mode_ == VerifyMode::kFull && !prechecked_.known.empty() ? &prechecked_ : nullptr;
+  }
 
  private:
   VerifyMode mode_;
   out::ClJob* attached_ = nullptr;
   VerifyReport report_;
+  PrecheckedMoves prechecked_;
   std::uint64_t moves_seen_ = 0;
   std::uint32_t paths_seen_ = 0;
   double seconds_ = 0;

@@ -39,8 +39,10 @@ StatMerge split_stat_rule(const out::StatValue& stat) {
                                                  "chord_guard_moves",
                                                  "chord_guard_lifted",
                                                  "chord_guard_points_added",
+                                                 "chord_guard_raised",
                                                  "verify_moves"};
-  static const std::set<std::string_view> max = {"chord_guard_max_lift", "verify_max_gouge",
+  static const std::set<std::string_view> max = {"chord_guard_max_lift", "chord_guard_max_raise",
+                                                 "verify_max_gouge",
                                                  "peak_rss_bytes"};
   static const std::set<std::string_view> min = {"verify_min_clearance",
                                                  "verify_min_rapid_clearance"};

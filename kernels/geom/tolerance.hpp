@@ -469,6 +469,12 @@ inline constexpr double kScallopBand = 0.01;
 // the job's verification (status failed_verification).
 inline constexpr double kVerifyGouge = 1e-6;
 
+// mm. The chord guard (engine/chord_guard.hpp) clears a move between exact CL points that
+// cuts into a mesh by at most this by raising its two ends (one-sided: the tool leaves at
+// most this much material there); deeper cuts get a lift-over. A chord 0.1 mm long sags
+// L^2 / 8 rho below a CL curve of curvature radius rho: 1.25e-3 mm at rho = 1 mm.
+inline constexpr double kChordRaise = 1e-3;
+
 // mm. Resolution of the verifier's distances to NURBS walls: a Bezier piece is subdivided
 // until its control polygon lies within half of this of its chord, and the distance reported
 // is a lower bound at most this below the truth (conservative: never misses a gouge).

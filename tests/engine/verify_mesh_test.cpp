@@ -1,7 +1,11 @@
 // Mesh verifier (engine/verify_mesh.*): analytic paths over a V-groove (touching, lowered,
 // rapids above it), the culling and grid against a brute-force scan of every facet with the
 // kernel, 1 vs 2 threads and chunked vs whole, and the bunny (real mesh): raster points
-// from the drop-cutter raster touch exactly, and the throughput of a raster job.
+// from the drop-cutter raster touch exactly, and the throughput of a raster job. The chord
+// guard (engine/chord_guard.hpp) on a fine raster: shallow cuts cleared by raising points,
+// deep ones by lift-overs, every move clean by the verifier and by the drop-cutter; its
+// checks handed to the verifier give the report of checking every move, and a check whose
+// move has changed is not used.
 #include "engine/verify_mesh.hpp"
 
 #include <gtest/gtest.h>
@@ -13,6 +17,7 @@
 #include <random>
 #include <string>
 
+#include "engine/chord_guard.hpp"
 #include "engine/drop_index.hpp"
 #include "engine/facet_table.hpp"
 #include "engine/parallel.hpp"
@@ -436,6 +441,106 @@ TEST(VerifyMeshBunny, RasterPointsTouchAndThroughput) {
         double(r.gjk_calls) / r.moves, r.max_gouge, (unsigned long long)r.gouging_moves);
     EXPECT_GT(r.moves, 100000u);
   }
+}
+
+// A fine ball raster (0.1 mm steps) of a bumpy height field, its chords guarded.
+struct GuardedRaster {
+  TriangleMesh mesh = test::random_height_field(30, 40, 5, 9);
+  Cutter ball = ball_cutter(6);
+  ClChunk in, out;
+  ChordGuardStats stats;
+  PrecheckedMoves checks;
+  explicit GuardedRaster(const MeshVerifier& verifier) {
+    RasterParams rp;
+    rp.interval = 2;
+    rp.step = 0.1;
+    RunControl control;
+    run_raster(mesh, ball, rp, [&](const ClChunk& c) { in.append(c); }, control);
+    out = guard_chords(verifier, SweptTool{ball, 50, 0}, in, stats, &checks);
+  }
+};
+
+TEST(ChordGuard, ShallowCutsRaisedDeepOnesLiftedAndEveryMoveClean) {
+  const TriangleMesh mesh = test::random_height_field(30, 40, 5, 9);
+  const MeshVerifier verifier(mesh);
+  const GuardedRaster g(verifier);
+  EXPECT_GT(g.stats.raised, 1000u);
+  EXPECT_GT(g.stats.lifted, 10u);
+  EXPECT_GT(g.stats.max_raise, 0);
+  EXPECT_LE(g.stats.max_raise, tol::kChordRaise);
+  // Every move out clean (the verifier's kernel); the points of the paths' ends unchanged.
+  const MeshVerifyReport r = verify_moves(verifier, g.ball, g.out, MeshVerifyParams{});
+  EXPECT_EQ(r.gouging_moves, 0u);
+  ASSERT_EQ(g.out.path_sizes.size(), g.in.path_sizes.size());
+  std::size_t a = 0, b = 0;
+  for (std::size_t k = 0; k < g.in.path_sizes.size(); ++k) {
+    EXPECT_EQ(g.out.point(b), g.in.point(a));
+    EXPECT_EQ(g.out.point(b + g.out.path_sizes[k] - 1), g.in.point(a + g.in.path_sizes[k] - 1));
+    a += g.in.path_sizes[k];
+    b += g.out.path_sizes[k];
+  }
+  // Against the drop-cutter (an independent oracle): no point below the CL surface, points
+  // with a contact (drop points, raised or not) at most kChordRaise above it, and sampled
+  // moves nowhere below it.
+  const DropIndex drop(mesh, g.ball);
+  std::size_t raised = 0;
+  for (std::size_t i = 0; i < g.out.point_count(); ++i) {
+    const Vec3 p = g.out.point(i);
+    const double z = drop.query(p.x(), p.y()).tip_z;
+    if (!std::isfinite(z)) continue;
+    EXPECT_GE(p.z(), z - 1e-9) << p.transpose();
+    if (g.out.contact[i] == 0) continue;
+    EXPECT_LE(p.z(), z + tol::kChordRaise + 1e-9) << p.transpose();
+    raised += p.z() > z + 1e-9;
+  }
+  EXPECT_GT(raised, 1000u);
+  int compared = 0;
+  for (std::size_t i = 0; i + 1 < g.out.point_count(); i += 53) {
+    const Vec3 p0 = g.out.point(i), p1 = g.out.point(i + 1);
+    if ((p1 - p0).head<2>().norm() > 0.5) continue;  // from one line to the next
+    EXPECT_LE(deepest_drop_along(mesh, g.ball, p0, p1), 2e-6) << p0.transpose();
+    ++compared;
+  }
+  EXPECT_GT(compared, 100);
+}
+
+TEST(ChordGuard, ItsChecksGiveTheVerifiersReportAndStaleOnesAreNotUsed) {
+  const TriangleMesh mesh = test::random_height_field(30, 40, 5, 9);
+  const MeshVerifier verifier(mesh);
+  GuardedRaster g(verifier);
+  std::size_t known = 0;
+  for (std::uint8_t k : g.checks.known) known += k;
+  EXPECT_GT(known, g.checks.known.size() / 2);
+  EXPECT_LT(known, g.checks.known.size());  // the lift-overs' moves are the verifier's
+  auto same = [](const MeshVerifyReport& x, const MeshVerifyReport& y) {
+    EXPECT_EQ(x.moves, y.moves);
+    EXPECT_EQ(x.gouging_moves, y.gouging_moves);
+    EXPECT_EQ(x.max_gouge, y.max_gouge);
+    EXPECT_EQ(x.rapid_moves, y.rapid_moves);
+    EXPECT_EQ(x.min_rapid_clearance, y.min_rapid_clearance);
+    ASSERT_EQ(x.worst.size(), y.worst.size());
+    for (std::size_t i = 0; i < x.worst.size(); ++i) {
+      EXPECT_EQ(x.worst[i].move, y.worst[i].move);
+      EXPECT_EQ(x.worst[i].amount, y.worst[i].amount);
+    }
+  };
+  const MeshVerifyParams params;
+  same(verify_moves(verifier, g.ball, g.out, params, 0, 0, &g.checks),
+       verify_moves(verifier, g.ball, g.out, params));
+  // A point lowered by 0.05 mm after the guard: its two moves' checks no longer describe
+  // them, and the verifier finds the gouge.
+  ClChunk planted = g.out;
+  const std::size_t i = planted.path_sizes[0] / 2;
+  planted.xyz[3 * i + 2] -= 0.05;
+  const MeshVerifyReport bad = verify_moves(verifier, g.ball, planted, params, 0, 0, &g.checks);
+  EXPECT_GE(bad.gouging_moves, 1u);
+  EXPECT_GT(bad.max_gouge, 0.04);
+  same(bad, verify_moves(verifier, g.ball, planted, params));
+  // Checks of another chunk (another count) are not used at all.
+  PrecheckedMoves shorter = g.checks;
+  shorter.known.pop_back();
+  same(verify_moves(verifier, g.ball, planted, params, 0, 0, &shorter),
+       verify_moves(verifier, g.ball, planted, params));
 }
 
 }  // namespace
