@@ -6,7 +6,7 @@
 //   raster:        chord guard / compute <= 0.2;  raster, scan: verify / compute <= 0.5;
 //   z-level, pencil: verify / compute <= 0.25;  pencil total / verified raster total <= 3.
 //
-//   ncpath_large_scan [--case scan1m,scan3m,bunny] [--out DIR] [--threads 2]
+//   ncpath_large_scan [--case scan1m,scan3m,bunny] [--out DIR] [--threads 2] [--rounds 2]
 //
 // Cases (meshes fitted to 200 mm in xy, ball 5 mm; built when missing, in datasets/cache/meshes):
 //   scan1m:  bunny00 Loop-subdivided twice (1,206,528 facets, bunny00_loop.stl): raster
@@ -20,7 +20,10 @@
 // Every job runs twice, with --verify off and with full verification (the default): the
 // stages (read, indexes, compute, chord guard) from the first, the cost of verification as
 // the difference of the two totals (the sink verifies while the workers compute the next
-// chunk, so verify_s overlaps compute_s), memory from the second.
+// chunk, so verify_s overlaps compute_s), memory from the second. Each is run --rounds times
+// (default 2) and the run with the smallest total kept: the index builds of one input vary
+// up to 5x between consecutive processes (0.65 to 3.25 s for the 3.3 M-facet raster's drop
+// index), with the memory the kernel has at hand for huge pages.
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -101,10 +104,23 @@ double get(const Stats& s, const char* name) {
 
 // The job without and with verification: the first's statistics, plus "verify_cost_s" (the
 // difference of the totals), "verified_total_s" and the verified run's peak RSS.
+int g_rounds = 2;
+
+// The run with the smallest total of g_rounds.
+Stats best_of(const std::string& op, const fs::path& mesh, const std::string& args,
+              const fs::path& out, int threads, bool verify) {
+  Stats best;
+  for (int r = 0; r < g_rounds; ++r) {
+    Stats s = run_once(op, mesh, args, out, threads, verify);
+    if (r == 0 || get(s, "total_s") < get(best, "total_s")) best = std::move(s);
+  }
+  return best;
+}
+
 Stats run_job(const std::string& op, const fs::path& mesh, const std::string& args,
               const fs::path& out, int threads) {
-  Stats s = run_once(op, mesh, args, out, threads, false);
-  const Stats v = run_once(op, mesh, args, out, threads, true);
+  Stats s = best_of(op, mesh, args, out, threads, false);
+  const Stats v = best_of(op, mesh, args, out, threads, true);
   s["verified_total_s"] = get(v, "total_s");
   s["verify_cost_s"] = get(v, "total_s") - get(s, "total_s");
   s["verify_s"] = get(v, "verify_s");
@@ -170,6 +186,8 @@ int main(int argc, char** argv) {
   app.add_option("--case", cases, "Comma-separated: scan1m, scan3m, bunny")->capture_default_str();
   app.add_option("--out", out, "Folder for the jobs' HDF5 files")->capture_default_str();
   app.add_option("--threads", threads, "Threads of every job")->capture_default_str();
+  app.add_option("--rounds", g_rounds, "Runs of every job and mode; the fastest is kept")
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   fs::create_directories(out);
   auto wants = [&](const std::string& c) { return ("," + cases + ",").find("," + c + ",") != std::string::npos; };
