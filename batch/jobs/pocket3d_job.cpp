@@ -84,9 +84,12 @@ Pocket3dJobSummary run_pocket3d_job(const JobSpec& job, out::ClJob& cl, out::Gco
 
   const Pocket3dParams p = plan_params(job, gcode);
   Stopwatch compute_clock;
-  Pocket3dPath path =
-      plan_naming_entities(in, [&] { return plan_pocket3d(in.regions, bottom, p); });
+  std::optional<Pocket3dPath> planned = plan_regions_that_fit(
+      in, [&](const std::vector<Region>& regions) { return plan_pocket3d(regions, bottom, p); },
+      stats);
   summary.compute_s = compute_clock.seconds();
+  if (!planned) return summary;  // nothing to cut: the job says so
+  Pocket3dPath& path = *planned;
   const ClChunk& c = path.cl;
   check_below_top(job, path, p.top);
 

@@ -97,8 +97,11 @@ PocketJobSummary run_pocket_job(const JobSpec& job, out::ClJob& cl, out::GcodeWr
 
   const PocketPathParams p = path_params(job, gcode);
   Stopwatch compute_clock;
-  PocketPath path = plan_naming_entities(in, [&] { return plan_pocket(in.regions, p); });
+  std::optional<PocketPath> planned = plan_regions_that_fit(
+      in, [&](const std::vector<Region>& regions) { return plan_pocket(regions, p); }, stats);
   summary.compute_s = compute_clock.seconds();
+  if (!planned) return summary;  // nothing to cut: the job says so
+  PocketPath& path = *planned;
 
   Stopwatch write_clock;
   ClChunk& c = path.cl;

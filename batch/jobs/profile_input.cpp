@@ -39,8 +39,7 @@ ProfileInput read_profile_regions(const std::filesystem::path& path, double join
   stats.push_back({"units", soup.units.name, ""});
   stats.push_back({"units_from", soup.units_from, ""});
   stats.push_back({"mm_per_unit", soup.units.mm_per_unit, "mm"});
-  if (!soup.units_warning.empty())
-    stats.push_back({std::string(kInputWarningStat), soup.units_warning, ""});
+  if (!soup.units_warning.empty()) add_input_warning(stats, soup.units_warning);
   stats.push_back({"profile_curves", i64(soup.curves.size()), ""});
   stats.push_back({"zero_length_dropped", i64(soup.zero_length_dropped), ""});
   stats.push_back({"warnings", i64(soup.warnings.size()), ""});
@@ -48,6 +47,11 @@ ProfileInput read_profile_regions(const std::filesystem::path& path, double join
   stats.push_back({"regions", i64(chained.regions.size()), ""});
   stats.push_back({"read_s", read_clock.seconds(), "s"});
   return {std::move(chained.regions), std::move(soup.sources)};
+}
+
+std::string region_label(const ProfileInput& in, std::size_t region) {
+  const std::string names = boundary_entities(in, region);
+  return "region " + std::to_string(region) + (names.empty() ? "" : " (boundary: " + names + ")");
 }
 
 std::string boundary_entities(const ProfileInput& in, std::size_t region) {

@@ -2,9 +2,11 @@
 // The input half of the profile operations (offset, pocket, pocket3d): read a pocket profile (DXF
 // or TOML), chain and nest it into regions, and record the input statistics. One function, so both
 // operations accept the same files and report the same problems.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+#include <variant>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,16 @@ struct ProfileInput {
 // The statistic (a string) an ok job's message repeats: what the reading had to guess.
 inline constexpr const char* kInputWarningStat = "input_warning";
 
+// Adds `text` to the job's input_warning statistic ("; "-separated: one statistic per name).
+inline void add_input_warning(std::vector<out::StatValue>& stats, const std::string& text) {
+  for (out::StatValue& s : stats)
+    if (s.name == kInputWarningStat) {
+      if (std::string* v = std::get_if<std::string>(&s.value)) *v += "; " + text;
+      return;
+    }
+  stats.push_back({std::string(kInputWarningStat), text, ""});
+}
+
 // Reads `path` (.dxf or .toml, by extension) in the job's `units` (nullopt: the drawing's, see
 // io::read_dxf) and chains it with `join_tolerance` (mm). Appends units (its name, e.g.
 // "inch"), units_from (job, $INSUNITS, $MEASUREMENT, file or default), mm_per_unit,
@@ -38,19 +50,36 @@ ProfileInput read_profile_regions(const std::filesystem::path& path, double join
 // "LINE 30, LINE 31, LINE 32 and 1 more"; "" when the curves carry no source.
 std::string boundary_entities(const ProfileInput& in, std::size_t region);
 
-// Runs `plan` (a pocket planner over in.regions) and returns what it returns. The user drew
-// entities, not regions: a RegionTooSmall it throws becomes std::invalid_argument with the
-// planner's message and the entities of that region's boundary ("... (boundary: CIRCLE 2F)").
+// "region 2 (boundary: CIRCLE 2F)": a region of `in` named by the entities the user drew.
+std::string region_label(const ProfileInput& in, std::size_t region);
+
+// Runs `plan` (a pocket planner, called with a list of regions) on the regions of `in` the
+// tool fits in: a region for which it throws RegionTooSmall is left out and the plan made
+// again without it. Appends the statistic regions_left_out and, when it is not 0, an
+// input_warning naming them by their entities ("the tool does not fit in region 2
+// (boundary: CIRCLE 2F): left out"). nullopt when the tool fits in no region.
 template <class Plan>
-auto plan_naming_entities(const ProfileInput& in, Plan&& plan) -> decltype(plan()) {
-  try {
-    return plan();
-  } catch (const RegionTooSmall& e) {
-    const std::string names = boundary_entities(in, e.region);
-    throw std::invalid_argument(names.empty()
-                                    ? std::string(e.what())
-                                    : e.what() + std::string(" (boundary: ") + names + ")");
+auto plan_regions_that_fit(const ProfileInput& in, Plan&& plan,
+                           std::vector<out::StatValue>& stats)
+    -> std::optional<decltype(plan(in.regions))> {
+  std::vector<Region> regions = in.regions;
+  std::vector<std::size_t> original(regions.size());
+  for (std::size_t r = 0; r < original.size(); ++r) original[r] = r;
+  std::string left_out;
+  std::optional<decltype(plan(in.regions))> out;
+  while (!regions.empty() && !out) {
+    try {
+      out.emplace(plan(regions));
+    } catch (const RegionTooSmall& e) {
+      left_out += (left_out.empty() ? "" : ", ") + region_label(in, original.at(e.region));
+      regions.erase(regions.begin() + std::ptrdiff_t(e.region));
+      original.erase(original.begin() + std::ptrdiff_t(e.region));
+    }
   }
+  const std::int64_t n = std::int64_t(in.regions.size() - regions.size());
+  stats.push_back({"regions_left_out", n, ""});
+  if (n > 0) add_input_warning(stats, "the tool does not fit in " + left_out + ": left out");
+  return out;
 }
 
 }  // namespace ncpath::jobs

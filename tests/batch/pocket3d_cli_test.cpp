@@ -302,16 +302,26 @@ TEST(Pocket3dCli, APocketTheSurfaceDoesNotCoverIsNamed) {
                  "rises above the stock top");
 }
 
-TEST(Pocket3dCli, ATooBigBallNamesTheBoundarysEntity) {
+// A DXF circle of radius 5 (handle 2F) over the dome and a ball of radius 10: nothing to cut,
+// an ok job with no point whose message says so and names the circle.
+TEST(Pocket3dCli, ATooBigBallIsNothingToCutAndNamesTheBoundarysEntity) {
   const auto dir = fixture_dir();
-  // A DXF circle of radius 5 (handle 2F) over the dome, and a ball of radius 10.
   const std::string dxf = test::dxf_entities(test::pairs(
       {"0", "CIRCLE", "5", "2F", "8", "0", "10", "0", "20", "0", "30", "0", "40", "5"}));
   std::ofstream(dir / "hole.dxf", std::ios::binary) << dxf;
-  const std::string cmd = "pocket3d --profile " + (dir / "hole.dxf").string() + " --surface " +
-                          (dir / "dome.toml").string() + " --tool ball:20 --scallop 0.1";
-  expect_failure(dir, cmd, "invalid_parameter", "does not fit");
-  expect_failure(dir, cmd, "invalid_parameter", "(boundary: CIRCLE 2F)");
+  const auto out = dir / "big.h5";
+  const CmdResult r = ncpath("pocket3d --profile " + (dir / "hole.dxf").string() + " --surface " +
+                             (dir / "dome.toml").string() +
+                             " --tool ball:20 --scallop 0.1 --quiet --out " + out.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  h5::Id f = h5::open_read(out);
+  h5::Id job(H5Gopen2(f, "/jobs/pocket3d", H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+  const std::string message = h5::attr_str(job, "message");
+  EXPECT_EQ(message.rfind("warning: nothing to cut (0 points)", 0), 0u) << message;
+  EXPECT_NE(message.find("the tool does not fit in region 0 (boundary: CIRCLE 2F): left out"),
+            std::string::npos)
+      << message;
 }
 
 TEST(Pocket3dCli, BatchJobsTakeTheSurfaceRelativeToTheBatchFile) {

@@ -187,18 +187,56 @@ TEST(PocketCli, BadParametersAreRejectedWithTheKey) {
   EXPECT_NE(r.output.find("sideways"), std::string::npos) << r.output;
 }
 
-TEST(PocketCli, ATooBigToolNamesTheBoundarysEntity) {
+// The message of an ok job (its status checked).
+std::string ok_message(const std::filesystem::path& file, const std::string& job_name) {
+  h5::Id f = h5::open_read(file);
+  h5::Id job(H5Gopen2(f, ("/jobs/" + job_name).c_str(), H5P_DEFAULT));
+  EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+  return h5::attr_str(job, "message");
+}
+
+// A DXF circle of radius 5 (handle 2F) and a 20 mm cutter: nothing to cut, an ok job with no
+// point whose message says so and names the circle.
+TEST(PocketCli, ATooBigToolIsNothingToCutAndNamesTheBoundarysEntity) {
   const auto dir = fixture_dir();
-  // A DXF circle of radius 5 (handle 2F) and a 20 mm cutter.
   const std::string dxf = test::dxf_entities(test::pairs(
       {"0", "CIRCLE", "5", "2F", "8", "0", "10", "0", "20", "0", "30", "0", "40", "5"}));
   std::ofstream(dir / "hole.dxf", std::ios::binary) << dxf;
-  expect_invalid_parameter(
-      dir, "pocket --profile " + (dir / "hole.dxf").string() + " --tool flat:20 --depth 2",
-      "does not fit");
   const CmdResult r = ncpath("pocket --profile " + (dir / "hole.dxf").string() +
                              " --tool flat:20 --depth 2 --quiet --out " + (dir / "x.h5").string());
-  EXPECT_NE(r.output.find("CIRCLE 2F"), std::string::npos) << r.output;
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const std::string message = ok_message(dir / "x.h5", "pocket");
+  EXPECT_EQ(message.rfind("warning: nothing to cut (0 points)", 0), 0u) << message;
+  EXPECT_NE(message.find("the tool does not fit in region 0 (boundary: CIRCLE 2F): left out"),
+            std::string::npos)
+      << message;
+}
+
+// Two pockets, one 4 mm wide: the 6 mm tool cuts the other and the job names the one it
+// leaves out; the verifier checks the path against both.
+TEST(PocketCli, OneRegionTooSmallDoesNotSinkTheOthers) {
+  const auto dir = fixture_dir();
+  std::ofstream(dir / "two.toml") << R"(
+[[circle]]
+center = [0, 0]
+radius = 20
+[[circle]]
+center = [50, 0]
+radius = 2
+)";
+  const CmdResult r = ncpath("pocket --profile " + (dir / "two.toml").string() +
+                             " --tool flat:6 --depth 2 --quiet --out " + (dir / "two.h5").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  const std::string message = ok_message(dir / "two.h5", "pocket");
+  EXPECT_EQ(message,
+            "warning: the tool does not fit in region 1 (boundary: circle 1): left out");
+  h5::Id f = h5::open_read(dir / "two.h5");
+  EXPECT_EQ(stat(f, "pocket", "regions_left_out"), 1);
+  EXPECT_EQ(stat(f, "pocket", "verify_max_gouge"), 0);
+  const auto pts = h5::read_all<double>(f, "/jobs/pocket/cl/points", H5T_NATIVE_DOUBLE);
+  ASSERT_GT(pts.size(), 30u);
+  for (std::size_t i = 0; i + 2 < pts.size(); i += 3)
+    if (pts[i + 2] < 0) EXPECT_LE(std::hypot(pts[i], pts[i + 1]), 20 - 3 + 1e-6);
 }
 
 // A string statistic of a job ("" when absent).
@@ -254,13 +292,14 @@ TEST(PocketCli, DrawingUnitsScaleThePartAndAreRecorded) {
     EXPECT_NEAR(hi, 101.6 - 3, 0.02);
   }
   {
-    // As mm the 6 mm tool does not fit: the failure names the guess too.
-    h5::Id f = run("none.dxf", "", " --tool flat:6", 1);
+    // As mm the 6 mm tool does not fit: nothing to cut, and the message names the guess.
+    h5::Id f = run("none.dxf", "", " --tool flat:6");
     h5::Id job(H5Gopen2(f, "/jobs/pocket", H5P_DEFAULT));
-    EXPECT_EQ(h5::attr_str(job, "status"), "invalid_parameter");
-    EXPECT_NE(h5::attr_str(job, "message").find("does not fit"), std::string::npos);
-    EXPECT_NE(h5::attr_str(job, "message").find("; warning: the drawing declares no units"),
-              std::string::npos);
+    EXPECT_EQ(h5::attr_str(job, "status"), "ok");
+    const std::string message = h5::attr_str(job, "message");
+    EXPECT_EQ(message.rfind("warning: nothing to cut", 0), 0u) << message;
+    EXPECT_NE(message.find("warning: the drawing declares no units"), std::string::npos);
+    EXPECT_NE(message.find("; the tool does not fit in region 0"), std::string::npos) << message;
   }
   {
     h5::Id f = run("none.dxf", "", " --tool flat:1");
