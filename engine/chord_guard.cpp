@@ -56,11 +56,10 @@ void recheck_raised(const MeshVerifier& mesh, const SweptTool& tool, const std::
 
 // A move that cuts in by at most `raise` has both its ends raised by its gouge (the lift that
 // clears it), but for the path's first and last points, where paths meet; the moves next to
-// raised points are checked again. Returns the raise of each point.
-std::vector<double> raise_shallow(const MeshVerifier& mesh, const SweptTool& tool, double raise,
-                                  std::vector<Vec3>& tips,
-                                  std::vector<MeshVerifier::MoveCheck>& checks,
-                                  ChordGuardStats& st) {
+// raised points are checked again.
+void raise_shallow(const MeshVerifier& mesh, const SweptTool& tool, double raise,
+                   std::vector<Vec3>& tips, std::vector<MeshVerifier::MoveCheck>& checks,
+                   ChordGuardStats& st) {
   const std::size_t n = tips.size();
   std::vector<double> up(n, 0);
   for (std::size_t i = 1; i < n; ++i) {
@@ -70,16 +69,13 @@ std::vector<double> raise_shallow(const MeshVerifier& mesh, const SweptTool& too
     if (i - 1 > 0) up[i - 1] = std::max(up[i - 1], g);
     if (i + 1 < n) up[i] = std::max(up[i], g);
   }
-  bool any = false;
   for (std::size_t i = 0; i < n; ++i) {
     if (!(up[i] > 0)) continue;
     tips[i].z() += up[i];
     ++st.raised;
     st.max_raise = std::max(st.max_raise, up[i]);
-    any = true;
   }
-  if (any) recheck_raised(mesh, tool, tips, up, checks);
-  return up;
+  recheck_raised(mesh, tool, tips, up, checks);  // nothing when no point moved
 }
 
 // One path: points [first, first + n) of `in`. Its moves are measured as one run; shallow

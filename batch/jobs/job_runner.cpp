@@ -193,9 +193,8 @@ JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out
   auto fail = [&](const char* status, const std::string& message) {
     o.status = status;
     o.message = message;
-    for (const StatValue& s : stats)
-      if (s.name == kInputWarningStat && std::holds_alternative<std::string>(s.value))
-        o.message += "; warning: " + std::get<std::string>(s.value);
+    if (const std::string input = input_warning(stats); !input.empty())
+      o.message += "; " + input;
   };
   if (!job.error.empty()) {
     fail(job.error_status.c_str(), job.error);
@@ -256,10 +255,7 @@ JobOutcome run_one(const JobSpec& job, std::size_t index, MeshCache& meshes, out
       o.message = verify_failure.empty() ? ok_job_warning(stats) : verify_failure;
       // A band of a split job may lie beside the part: join_bands judges the whole job.
       const bool band = job.operation == Operation::kRaster && job.raster.bands > 1;
-      if (verify_failure.empty() && o.points == 0 && !band) {
-        const std::string none = nothing_to_cut_warning(job);
-        o.message = o.message.empty() ? none : none + "; " + o.message;
-      }
+      if (verify_failure.empty() && !band) o.message = with_nothing_to_cut(job, o.points, o.message);
       if (verify_failure.empty() && !bound_warning.empty())
         o.message = o.message.empty() ? bound_warning : o.message + "; " + bound_warning;
     } catch (const io::ReadError& e) {
@@ -307,11 +303,22 @@ std::string nothing_to_cut_warning(const JobSpec& job) {
   return "warning: nothing to cut (0 points): " + why;
 }
 
-std::string ok_job_warning(const std::vector<out::StatValue>& stats) {
-  std::string out;
+std::string with_nothing_to_cut(const JobSpec& job, std::uint64_t points,
+                                const std::string& message) {
+  if (points > 0) return message;
+  const std::string none = nothing_to_cut_warning(job);
+  return message.empty() ? none : none + "; " + message;
+}
+
+std::string input_warning(const std::vector<out::StatValue>& stats) {
   for (const out::StatValue& s : stats)
-    if (s.name == kInputWarningStat && std::holds_alternative<std::string>(s.value))
-      out = "warning: " + std::get<std::string>(s.value);
+    if (const std::string* v = std::get_if<std::string>(&s.value); v && s.name == kInputWarningStat)
+      return "warning: " + *v;
+  return "";
+}
+
+std::string ok_job_warning(const std::vector<out::StatValue>& stats) {
+  std::string out = input_warning(stats);
   const std::string chains = open_chain_warning(stats);
   if (!chains.empty()) out = out.empty() ? chains : out + "; " + chains;
   return out;

@@ -40,6 +40,13 @@ std::string open_chain_warning(const std::vector<out::StatValue>& stats);
 // The warning of an ok job that wrote no point: "warning: nothing to cut (0 points): " and
 // why, for the job's operation (a profile: the tool fits in none of its regions).
 std::string nothing_to_cut_warning(const JobSpec& job);
+// `message` led by nothing_to_cut_warning(job) when the job wrote no point (points == 0).
+std::string with_nothing_to_cut(const JobSpec& job, std::uint64_t points,
+                                const std::string& message);
+
+// "warning: " and the input's warning (profile_input.hpp kInputWarningStat: units the reader
+// had to guess, regions left out), or "" when there is none.
+std::string input_warning(const std::vector<out::StatValue>& stats);
 
 // Every warning an ok job carries, "; "-separated ("" when none): the input's
 // (profile_input.hpp kInputWarningStat: units the reader had to guess), then

@@ -102,7 +102,29 @@ std::string parse_tool(const std::string& text, Cutter& out) {
   return "";
 }
 
+bool operation_by_name(const std::string& name, Operation& out) {
+  for (Operation op : {Operation::kRaster, Operation::kDrop, Operation::kOffset, Operation::kPocket,
+                       Operation::kPocket3d, Operation::kScan, Operation::kZLevel,
+                       Operation::kPencil, Operation::kFillet})
+    if (name == operation_name(op)) {
+      out = op;
+      return true;
+    }
+  return false;
+}
+
 namespace {
+
+// The job-level key `units`: a profile job's drawing units; refused on mesh jobs.
+void parse_units_key(Keys& k, bool profile_op, JobSpec& job) {
+  std::string units;
+  if (!k.string("units", units)) return;
+  if (!profile_op)
+    k.fail("units", "applies to profile drawings (offset, pocket, pocket3d); scale a mesh "
+                    "with transform.scale");
+  else if (std::string e = parse_units(units, job.units); !e.empty())
+    k.fail("units", e);
+}
 
 JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem::path& base) {
   JobSpec job;
@@ -116,25 +138,7 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
     if (std::string e = parse_verify_mode(verify, job.verify); !e.empty()) k.fail("verify", e);
   std::string preview;
   if (k.string("preview", preview)) job.preview = (base / preview).lexically_normal();
-  if (op == "raster")
-    job.operation = Operation::kRaster;
-  else if (op == "drop")
-    job.operation = Operation::kDrop;
-  else if (op == "offset")
-    job.operation = Operation::kOffset;
-  else if (op == "pocket")
-    job.operation = Operation::kPocket;
-  else if (op == "pocket3d")
-    job.operation = Operation::kPocket3d;
-  else if (op == "scan")
-    job.operation = Operation::kScan;
-  else if (op == "zlevel")
-    job.operation = Operation::kZLevel;
-  else if (op == "pencil")
-    job.operation = Operation::kPencil;
-  else if (op == "fillet")
-    job.operation = Operation::kFillet;
-  else
+  if (!operation_by_name(op, job.operation))
     k.fail("operation",
            "must be \"raster\", \"scan\", \"zlevel\", \"pencil\", \"fillet\", \"drop\", "
            "\"offset\", \"pocket\" or \"pocket3d\", got \"" +
@@ -148,14 +152,7 @@ JobSpec parse_job(const toml::table& t, std::size_t index, const std::filesystem
   else
     k.fail("input", profile_op ? "is required (a profile: DXF or TOML)"
                                : "is required (a mesh file: STL or OFF)");
-  std::string units;
-  if (k.string("units", units)) {
-    if (!profile_op)
-      k.fail("units", "applies to profile drawings (offset, pocket, pocket3d); scale a mesh "
-                      "with transform.scale");
-    else if (std::string e = parse_units(units, job.units); !e.empty())
-      k.fail("units", e);
-  }
+  parse_units_key(k, profile_op, job);
   if (job.operation == Operation::kPocket3d) {
     std::string surface;
     if (k.string("surface", surface))

@@ -175,6 +175,8 @@ BatchSpec parse_batch_text(std::string_view text, const std::filesystem::path& b
 
 // "raster", "drop", "offset", "pocket", "pocket3d", "scan", "zlevel", "pencil", "fillet"
 const char* operation_name(Operation op);
+// The operation operation_name gives `name`; false for any other name.
+bool operation_by_name(const std::string& name, Operation& out);
 
 // "x", "y", "both" -> families; error message to follow the key's name, or "".
 // (In raster_scan_params.cpp.)

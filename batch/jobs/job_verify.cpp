@@ -298,15 +298,8 @@ JobSpec stored_job_spec(const std::string& operation, const std::string& input_p
                         const std::string& tool_json, const std::string& params_json) {
   JobSpec job;
   job.input = input_path;
-  bool known = false;
-  for (Operation op : {Operation::kRaster, Operation::kDrop, Operation::kOffset, Operation::kPocket,
-                       Operation::kPocket3d, Operation::kScan, Operation::kZLevel,
-                       Operation::kPencil, Operation::kFillet})
-    if (operation == operation_name(op)) {
-      job.operation = op;
-      known = true;
-    }
-  if (!known) throw std::invalid_argument("unknown operation '" + operation + "'");
+  if (!operation_by_name(operation, job.operation))
+    throw std::invalid_argument("unknown operation '" + operation + "'");
   try {
     const nlohmann::json tool = nlohmann::json::parse(tool_json);
     const std::string type = tool.at("type");

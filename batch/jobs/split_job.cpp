@@ -281,10 +281,7 @@ JobOutcome join_bands(out::ClFile& file, const JobSpec& job, const std::vector<B
   o.status = failure.empty() ? "ok" : "failed_verification";
   for (const Band& b : bands)
     if (o.message.empty()) o.message = b.outcome.message;
-  if (failure.empty() && o.points == 0) {
-    const std::string none = nothing_to_cut_warning(job);
-    o.message = o.message.empty() ? none : none + "; " + o.message;
-  }
+  if (failure.empty()) o.message = with_nothing_to_cut(job, o.points, o.message);
   if (!failure.empty()) o.message = failure;
   cl.set_status(o.status, o.message);
   cl.write_stats(merged);

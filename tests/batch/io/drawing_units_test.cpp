@@ -32,6 +32,12 @@ std::string drawing(std::initializer_list<std::pair<std::string, std::string>> h
   return h + ents;
 }
 
+// A file name of the running test's own: ctest runs the tests of this binary in parallel
+// processes, which share write_temp's folder.
+std::string own_name(const std::string& what) {
+  return std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" + what;
+}
+
 // The rectangle's far corner and the circle's radius as read, mm.
 struct Read {
   ProfileSoup soup;
@@ -39,7 +45,7 @@ struct Read {
   double radius;
 };
 Read read(const std::string& text, const std::optional<LengthUnit>& job = std::nullopt) {
-  Read r{read_dxf(write_temp("units.dxf", text), job), {}, 0};
+  Read r{read_dxf(write_temp(own_name("units.dxf"), text), job), {}, 0};
   for (const ProfileCurve& c : r.soup.curves) {
     if (c.seg.is_arc()) r.radius = c.seg.r;
     if (!c.seg.is_arc() && c.seg.a.x() > r.corner.x()) r.corner = c.seg.a;
@@ -50,7 +56,7 @@ Read read(const std::string& text, const std::optional<LengthUnit>& job = std::n
 
 std::string read_error_of(const std::string& text) {
   try {
-    read_dxf(write_temp("units_bad.dxf", text));
+    read_dxf(write_temp(own_name("units_bad.dxf"), text));
   } catch (const ReadError& e) {
     return e.what();
   }
